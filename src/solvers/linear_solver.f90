@@ -1,0 +1,106 @@
+!> Abstract interface of the linear solvers (skyline, UMFPACK, dense).
+!!
+!! Life cycle, the same for every implementation:
+!!
+!!     call s%analyse(neq, xadj, adjncy, status)   ! once per sparsity pattern
+!!     call s%zero()
+!!     call s%add_element(ieq, ke)                 ! many times (K_AB)
+!!     call s%store_base()                         ! keep K_AB
+!!     do increment
+!!        call s%restore_base()                    ! back to K_AB
+!!        call s%add_element(ieq, kc)              ! contact springs
+!!        call s%factorize(status)
+!!        call s%solve(b, status)                  ! many right-hand sides
+!!     end do
+!!     call s%free()
+!!
+!! The pattern handed to `analyse` must contain every coupling that will ever
+!! be assembled (bodies, ties and all candidate contact pairs), so that the
+!! symbolic work is done once.  The driver never knows which solver it holds.
+module linear_solver
+   use kinds, only: dp, i8
+   use errors, only: status_t
+   implicit none
+   private
+
+   public :: linear_solver_t, solver_stats_t
+
+   !> Figures every solver reports after a factorization.
+   type :: solver_stats_t
+      integer :: neq = 0                 !! number of equations
+      integer(i8) :: nnz_matrix = 0      !! stored entries of the matrix (one triangle for skyline)
+      integer(i8) :: nnz_factor = 0      !! stored entries of the factors
+      integer(i8) :: memory_bytes = 0    !! memory held by the solver (matrix + factors)
+      integer :: negative_pivots = 0     !! number of negative pivots (skyline)
+      real(dp) :: pivot_ratio = 0.0_dp   !! min |d_i| / |k_ii| over the pivots (skyline)
+      integer :: factorizations = 0      !! numeric factorizations so far
+      integer :: solves = 0              !! solves so far
+   end type solver_stats_t
+
+   type, abstract :: linear_solver_t
+      integer :: neq = 0
+      type(solver_stats_t) :: stats
+   contains
+      procedure(analyse_i), deferred :: analyse
+      procedure(zero_i), deferred :: zero
+      procedure(add_element_i), deferred :: add_element
+      procedure(zero_i), deferred :: store_base
+      procedure(zero_i), deferred :: restore_base
+      procedure(factorize_i), deferred :: factorize
+      procedure(solve_i), deferred :: solve
+      procedure(zero_i), deferred :: free
+      procedure(name_i), deferred :: name
+      procedure(bad_eq_i), deferred :: failed_equation
+   end type linear_solver_t
+
+   abstract interface
+      !> Symbolic set-up from the equation graph.
+      subroutine analyse_i(this, neq, xadj, adjncy, status)
+         import :: linear_solver_t, status_t
+         class(linear_solver_t), intent(inout) :: this
+         integer, intent(in) :: neq          !! number of equations
+         integer, intent(in) :: xadj(:)      !! (neq+1) CSR row pointers of the graph
+         integer, intent(in) :: adjncy(:)    !! columns coupled to each row, diagonal included
+         type(status_t), intent(inout) :: status
+      end subroutine analyse_i
+
+      subroutine zero_i(this)
+         import :: linear_solver_t
+         class(linear_solver_t), intent(inout) :: this
+      end subroutine zero_i
+
+      !> Add a symmetric element matrix; entries with ieq <= 0 are skipped.
+      subroutine add_element_i(this, ieq, ke)
+         import :: linear_solver_t, dp
+         class(linear_solver_t), intent(inout) :: this
+         integer, intent(in) :: ieq(:)       !! global equation of each element dof
+         real(dp), intent(in) :: ke(:, :)    !! element matrix, size(ieq) square
+      end subroutine add_element_i
+
+      subroutine factorize_i(this, status)
+         import :: linear_solver_t, status_t
+         class(linear_solver_t), intent(inout) :: this
+         type(status_t), intent(inout) :: status
+      end subroutine factorize_i
+
+      !> Overwrite b with the solution of K x = b.
+      subroutine solve_i(this, b, status)
+         import :: linear_solver_t, dp, status_t
+         class(linear_solver_t), intent(inout) :: this
+         real(dp), intent(inout) :: b(:)
+         type(status_t), intent(inout) :: status
+      end subroutine solve_i
+
+      function name_i(this) result(s)
+         import :: linear_solver_t
+         class(linear_solver_t), intent(in) :: this
+         character(len=:), allocatable :: s
+      end function name_i
+
+      !> Equation at which the last factorization failed (0 if none or unknown).
+      pure integer function bad_eq_i(this)
+         import :: linear_solver_t
+         class(linear_solver_t), intent(in) :: this
+      end function bad_eq_i
+   end interface
+end module linear_solver
