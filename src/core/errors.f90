@@ -8,11 +8,12 @@
 !! 3. Internal errors stop the program through `assert`, naming file and line,
 !!    with exit code 1.
 module errors
-   use kinds, only: stderr
+   use, intrinsic :: iso_c_binding, only: c_int
+   use kinds, only: stderr, stdout
    implicit none
    private
 
-   public :: input_error_t, error_list_t, status_t, assert, fatal_internal
+   public :: input_error_t, error_list_t, status_t, assert, fatal_internal, terminate
    public :: STAT_OK, STAT_SINGULAR, STAT_NEGATIVE_PIVOT, STAT_JACOBIAN, &
              STAT_NO_CONVERGENCE, STAT_CHATTER, STAT_SOLVER, STAT_IO, STAT_INPUT, &
              EXIT_OK, EXIT_INTERNAL, EXIT_INPUT, EXIT_NUMERICAL
@@ -170,11 +171,26 @@ contains
       if (.not. condition) call fatal_internal(message, file, line)
    end subroutine assert
 
+   !> End the program with an exit code, quietly (no runtime banner or backtrace).
+   !! Fortran units are flushed first; files must already be closed.
+   subroutine terminate(code)
+      integer, intent(in) :: code
+      interface
+         subroutine c_exit(status) bind(C, name='exit')
+            import :: c_int
+            integer(c_int), value :: status
+         end subroutine c_exit
+      end interface
+      flush (stdout)
+      flush (stderr)
+      call c_exit(int(code, c_int))
+   end subroutine terminate
+
    !> Report an internal error and stop with exit code 1.
    subroutine fatal_internal(message, file, line)
       character(len=*), intent(in) :: message, file
       integer, intent(in) :: line
       write (stderr, '(a,a,i0,a,a)') file, ':', line, ': internal error: ', message
-      error stop EXIT_INTERNAL
+      call terminate(EXIT_INTERNAL)
    end subroutine fatal_internal
 end module errors

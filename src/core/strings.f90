@@ -1,0 +1,79 @@
+!> Small string helpers used by the reader, the listing and the messages.
+module strings
+   use kinds, only: dp
+   implicit none
+   private
+   public :: upper, lower, itoa, rtoa, basename, strip_extension
+
+contains
+
+   !> Upper-case copy of a string.
+   pure function upper(s) result(r)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: r
+      integer :: i, c
+      r = s
+      do i = 1, len(s)
+         c = iachar(s(i:i))
+         if (c >= iachar('a') .and. c <= iachar('z')) r(i:i) = achar(c - 32)
+      end do
+   end function upper
+
+   !> Lower-case copy of a string.
+   pure function lower(s) result(r)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: r
+      integer :: i, c
+      r = s
+      do i = 1, len(s)
+         c = iachar(s(i:i))
+         if (c >= iachar('A') .and. c <= iachar('Z')) r(i:i) = achar(c + 32)
+      end do
+   end function lower
+
+   !> Integer as text without blanks.
+   pure function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=24) :: b
+      write (b, '(i0)') i
+      s = trim(b)
+   end function itoa
+
+   !> Real as short text (G-format, blanks removed).
+   pure function rtoa(x, fmt) result(s)
+      real(dp), intent(in) :: x
+      character(len=*), intent(in), optional :: fmt  !! Fortran edit descriptor, default '(es12.5)'
+      character(len=:), allocatable :: s
+      character(len=40) :: b
+      if (present(fmt)) then
+         write (b, fmt) x
+      else
+         write (b, '(es12.5)') x
+      end if
+      s = trim(adjustl(b))
+   end function rtoa
+
+   !> Last path component.
+   pure function basename(path) result(s)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: s
+      integer :: k
+      k = index(path, '/', back=.true.)
+      s = path(k + 1:)
+   end function basename
+
+   !> Path without its last extension (only in the last component).
+   pure function strip_extension(path) result(s)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: s
+      integer :: k, kslash
+      k = index(path, '.', back=.true.)
+      kslash = index(path, '/', back=.true.)
+      if (k > kslash + 1) then
+         s = path(1:k - 1)
+      else
+         s = path
+      end if
+   end function strip_extension
+end module strings

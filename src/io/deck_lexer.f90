@@ -1,0 +1,399 @@
+!> Card-level access to a fixed-format input deck.
+!!
+!! The whole file is read once into memory.  Blank lines and comments
+!! (everything from a `#` to the end of the line) are dropped; every remaining
+!! line is a *card* that remembers its line number, so that every error can be
+!! reported as `file:line:col`.  Fields are fixed column ranges (I5 integers,
+!! F10 reals accepting E-notation, A10 words), read by the `get_*` procedures,
+!! which validate the text themselves instead of trusting a Fortran `read`
+!! (which would silently accept "1 2" as 12 or stop the program on "abc").
+module deck_lexer
+   use kinds, only: dp
+   use errors, only: error_list_t
+   use strings, only: upper, itoa
+   implicit none
+   private
+
+   public :: card_t, deck_t, is_integer_text, is_real_text
+
+   !> One significant line of the deck.
+   type :: card_t
+      character(len=:), allocatable :: text  !! the line without comment and trailing blanks
+      integer :: line = 0                    !! 1-based line number in the file
+   end type card_t
+
+   !> A deck held in memory, with a cursor and the list of errors found so far.
+   type :: deck_t
+      character(len=:), allocatable :: file  !! path as given by the user
+      type(card_t), allocatable :: cards(:)
+      integer :: ncard = 0
+      integer :: pos = 0                     !! index of the last card consumed
+      integer :: nlines = 0                  !! lines in the file
+      integer :: last_format_error = 0       !! card of the last field-format error
+      type(error_list_t) :: errors
+   contains
+      procedure :: load => deck_load
+      procedure :: at_end => deck_at_end
+      procedure :: peek => deck_peek
+      procedure :: next => deck_next
+      procedure :: keyword => deck_keyword
+      procedure :: is_keyword_card => deck_is_keyword_card
+      procedure :: get_int => deck_get_int
+      procedure :: get_real => deck_get_real
+      procedure :: get_word => deck_get_word
+      procedure :: error_at => deck_error_at
+      procedure :: error_eof => deck_error_eof
+      procedure :: field_text => deck_field_text
+   end type deck_t
+
+contains
+
+   !> Read the file into memory and split it into cards.
+   subroutine deck_load(this, path, ok)
+      class(deck_t), intent(inout) :: this
+      character(len=*), intent(in) :: path   !! deck file
+      logical, intent(out) :: ok             !! false if the file could not be read
+      integer :: u, ios, fsize, i, start, nl
+      character(len=:), allocatable :: buf
+      character(len=256) :: msg
+      logical :: exists
+
+      this%file = path
+      ok = .false.
+      inquire (file=path, exist=exists)
+      if (.not. exists) then
+         call this%errors%add('E-FILE', 'cannot open deck: file "'//path//'" does not exist', file=path)
+         return
+      end if
+      open (newunit=u, file=path, access='stream', form='unformatted', status='old', &
+            action='read', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call this%errors%add('E-FILE', 'cannot open deck: '//trim(msg), file=path)
+         return
+      end if
+      inquire (unit=u, size=fsize)
+      if (fsize < 0) fsize = 0
+      allocate (character(len=fsize) :: buf)
+      if (fsize > 0) then
+         read (u, iostat=ios, iomsg=msg) buf
+         if (ios /= 0) then
+            call this%errors%add('E-FILE', 'cannot read deck: '//trim(msg), file=path)
+            close (u)
+            return
+         end if
+      end if
+      close (u)
+
+      allocate (this%cards(64))
+      this%ncard = 0
+      nl = 0
+      start = 1
+      do i = 1, fsize + 1
+         if (i > fsize) then
+            if (start <= fsize) then
+               nl = nl + 1
+               call add_line(this, buf(start:fsize), nl)
+            end if
+            exit
+         end if
+         if (buf(i:i) == achar(10)) then
+            nl = nl + 1
+            call add_line(this, buf(start:i - 1), nl)
+            start = i + 1
+         end if
+      end do
+      this%nlines = nl
+      this%pos = 0
+      ok = .true.
+   end subroutine deck_load
+
+   !> Strip CR, comment and trailing blanks; keep the line if anything is left.
+   subroutine add_line(this, raw, nl)
+      type(deck_t), intent(inout) :: this
+      character(len=*), intent(in) :: raw
+      integer, intent(in) :: nl
+      character(len=:), allocatable :: s
+      type(card_t), allocatable :: tmp(:)
+      integer :: k
+
+      s = raw
+      if (len(s) > 0) then
+         if (s(len(s):len(s)) == achar(13)) s = s(1:len(s) - 1)
+      end if
+      k = index(s, '#')
+      if (k > 0) s = s(1:k - 1)
+      k = index(s, achar(9))
+      if (k > 0) then
+         call this%errors%add('E-TAB', 'tab character in a fixed-format deck; '// &
+                              'fields are counted in columns, use spaces', &
+                              file=this%file, line=nl, col=k, card=expand_tabs(s))
+         s = expand_tabs(s)
+      end if
+      if (len_trim(s) == 0) return
+      if (this%ncard >= size(this%cards)) then
+         allocate (tmp(2*size(this%cards)))
+         tmp(1:this%ncard) = this%cards(1:this%ncard)
+         call move_alloc(tmp, this%cards)
+      end if
+      this%ncard = this%ncard + 1
+      this%cards(this%ncard)%text = trim(s)
+      this%cards(this%ncard)%line = nl
+   end subroutine add_line
+
+   pure function expand_tabs(s) result(r)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: r
+      integer :: i
+      r = ''
+      do i = 1, len(s)
+         if (s(i:i) == achar(9)) then
+            r = r//repeat(' ', 8 - mod(len(r), 8))
+         else
+            r = r//s(i:i)
+         end if
+      end do
+   end function expand_tabs
+
+   pure logical function deck_at_end(this)
+      class(deck_t), intent(in) :: this
+      deck_at_end = this%pos >= this%ncard
+   end function deck_at_end
+
+   !> Index of the next card without consuming it (0 at the end).
+   pure integer function deck_peek(this)
+      class(deck_t), intent(in) :: this
+      deck_peek = 0
+      if (this%pos < this%ncard) deck_peek = this%pos + 1
+   end function deck_peek
+
+   !> Consume and return the index of the next card (0 at the end).
+   integer function deck_next(this)
+      class(deck_t), intent(inout) :: this
+      deck_next = 0
+      if (this%pos < this%ncard) then
+         this%pos = this%pos + 1
+         deck_next = this%pos
+      end if
+   end function deck_next
+
+   !> The first blank-delimited word of card ic, upper-cased.
+   function deck_keyword(this, ic) result(w)
+      class(deck_t), intent(in) :: this
+      integer, intent(in) :: ic
+      character(len=:), allocatable :: w
+      character(len=:), allocatable :: s
+      integer :: k
+      s = adjustl(this%cards(ic)%text)
+      k = index(trim(s), ' ')
+      if (k == 0) then
+         w = upper(trim(s))
+      else
+         w = upper(s(1:k - 1))
+      end if
+   end function deck_keyword
+
+   !> A keyword card starts with a letter in its first non-blank column.
+   pure logical function deck_is_keyword_card(this, ic)
+      class(deck_t), intent(in) :: this
+      integer, intent(in) :: ic
+      character(len=1) :: c
+      character(len=:), allocatable :: s
+      s = adjustl(this%cards(ic)%text)
+      c = s(1:1)
+      deck_is_keyword_card = (c >= 'A' .and. c <= 'Z') .or. (c >= 'a' .and. c <= 'z')
+   end function deck_is_keyword_card
+
+   !> The raw text of columns c1..c2 of card ic (blank-padded past the end).
+   function deck_field_text(this, ic, c1, c2) result(f)
+      class(deck_t), intent(in) :: this
+      integer, intent(in) :: ic, c1, c2
+      character(len=:), allocatable :: f
+      integer :: n
+      n = len(this%cards(ic)%text)
+      if (c1 > n) then
+         f = ''
+      else
+         f = this%cards(ic)%text(c1:min(c2, n))
+      end if
+   end function deck_field_text
+
+   !> Read an integer field.  Blank gives `default` when present, else an error.
+   subroutine deck_get_int(this, ic, c1, c2, card, field, val, ok, default)
+      class(deck_t), intent(inout) :: this
+      integer, intent(in) :: ic          !! card index
+      integer, intent(in) :: c1, c2      !! first and last column of the field
+      character(len=*), intent(in) :: card   !! card name for messages
+      character(len=*), intent(in) :: field  !! field name for messages
+      integer, intent(out) :: val
+      logical, intent(inout) :: ok       !! set to .false. on error, never set to .true.
+      integer, intent(in), optional :: default
+      character(len=:), allocatable :: f
+      integer :: ios
+
+      val = 0
+      f = trim(adjustl(this%field_text(ic, c1, c2)))
+      if (len(f) == 0) then
+         if (present(default)) then
+            val = default
+         else
+            call this%error_at(ic, c1, 'E-MISSING', card//': field '//field//' (columns '// &
+                               itoa(c1)//'-'//itoa(c2)//') expected an integer, found a blank field')
+            ok = .false.
+         end if
+         return
+      end if
+      if (.not. is_integer_text(f)) then
+         call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
+                            itoa(c1)//'-'//itoa(c2)//') expected an integer, found "'//f//'"')
+         ok = .false.
+         return
+      end if
+      read (f, *, iostat=ios) val
+      if (ios /= 0) then
+         call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
+                            itoa(c1)//'-'//itoa(c2)//') integer out of range: "'//f//'"')
+         ok = .false.
+      end if
+   end subroutine deck_get_int
+
+   !> Read a real field (plain or E-notation).  Blank gives `default` when present.
+   subroutine deck_get_real(this, ic, c1, c2, card, field, val, ok, default)
+      class(deck_t), intent(inout) :: this
+      integer, intent(in) :: ic, c1, c2
+      character(len=*), intent(in) :: card, field
+      real(dp), intent(out) :: val
+      logical, intent(inout) :: ok
+      real(dp), intent(in), optional :: default
+      character(len=:), allocatable :: f
+      integer :: ios
+
+      val = 0.0_dp
+      f = trim(adjustl(this%field_text(ic, c1, c2)))
+      if (len(f) == 0) then
+         if (present(default)) then
+            val = default
+         else
+            call this%error_at(ic, c1, 'E-MISSING', card//': field '//field//' (columns '// &
+                               itoa(c1)//'-'//itoa(c2)//') expected a real number, found a blank field')
+            ok = .false.
+         end if
+         return
+      end if
+      if (.not. is_real_text(f)) then
+         call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
+                            itoa(c1)//'-'//itoa(c2)//') expected a real number, found "'//f//'"')
+         ok = .false.
+         return
+      end if
+      read (f, *, iostat=ios) val
+      if (ios /= 0 .or. .not. (abs(val) <= huge(val))) then
+         call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
+                            itoa(c1)//'-'//itoa(c2)//') real number out of range: "'//f//'"')
+         val = 0.0_dp
+         ok = .false.
+      end if
+   end subroutine deck_get_real
+
+   !> Read a word field (upper-cased).  Blank gives `default` when present.
+   subroutine deck_get_word(this, ic, c1, c2, card, field, val, ok, default)
+      class(deck_t), intent(inout) :: this
+      integer, intent(in) :: ic, c1, c2
+      character(len=*), intent(in) :: card, field
+      character(len=:), allocatable, intent(out) :: val
+      logical, intent(inout) :: ok
+      character(len=*), intent(in), optional :: default
+      val = upper(trim(adjustl(this%field_text(ic, c1, c2))))
+      if (len(val) == 0) then
+         if (present(default)) then
+            val = default
+         else
+            call this%error_at(ic, c1, 'E-MISSING', card//': field '//field//' (columns '// &
+                               itoa(c1)//'-'//itoa(c2)//') expected a word, found a blank field')
+            ok = .false.
+         end if
+      end if
+   end subroutine deck_get_word
+
+   !> Record an error located at card ic, column col.
+   !! Only the first field-format error (E-NUMBER, E-MISSING, E-EXTRA) of a
+   !! card is kept: a card in the wrong place would otherwise give one
+   !! message per field.
+   subroutine deck_error_at(this, ic, col, code, message)
+      class(deck_t), intent(inout) :: this
+      integer, intent(in) :: ic, col
+      character(len=*), intent(in) :: code, message
+      if (code == 'E-NUMBER' .or. code == 'E-MISSING' .or. code == 'E-EXTRA') then
+         if (this%last_format_error == ic) return
+         this%last_format_error = ic
+      end if
+      call this%errors%add(code, message, file=this%file, line=this%cards(ic)%line, &
+                           col=max(col, 1), card=this%cards(ic)%text)
+   end subroutine deck_error_at
+
+   !> Record an error at the end of the file (something is missing).
+   subroutine deck_error_eof(this, code, message)
+      class(deck_t), intent(inout) :: this
+      character(len=*), intent(in) :: code, message
+      call this%errors%add(code, message, file=this%file, line=max(this%nlines, 1))
+   end subroutine deck_error_eof
+
+
+   !> Optional sign followed by one or more digits.
+   pure logical function is_integer_text(s)
+      character(len=*), intent(in) :: s
+      integer :: i, i0
+      is_integer_text = .false.
+      if (len(s) == 0) return
+      i0 = 1
+      if (s(1:1) == '+' .or. s(1:1) == '-') i0 = 2
+      if (i0 > len(s)) return
+      do i = i0, len(s)
+         if (s(i:i) < '0' .or. s(i:i) > '9') return
+      end do
+      is_integer_text = .true.
+   end function is_integer_text
+
+   !> [sign] digits [. digits] [(e|E|d|D) [sign] digits], at least one mantissa digit.
+   pure logical function is_real_text(s)
+      character(len=*), intent(in) :: s
+      integer :: i, n, nd
+      is_real_text = .false.
+      n = len(s)
+      if (n == 0) return
+      i = 1
+      if (s(i:i) == '+' .or. s(i:i) == '-') i = i + 1
+      nd = 0
+      do while (i <= n)
+         if (s(i:i) < '0' .or. s(i:i) > '9') exit
+         nd = nd + 1
+         i = i + 1
+      end do
+      if (i <= n) then
+         if (s(i:i) == '.') then
+            i = i + 1
+            do while (i <= n)
+               if (s(i:i) < '0' .or. s(i:i) > '9') exit
+               nd = nd + 1
+               i = i + 1
+            end do
+         end if
+      end if
+      if (nd == 0) return
+      if (i <= n) then
+         if (index('eEdD', s(i:i)) == 0) return
+         i = i + 1
+         if (i <= n) then
+            if (s(i:i) == '+' .or. s(i:i) == '-') i = i + 1
+         end if
+         nd = 0
+         do while (i <= n)
+            if (s(i:i) < '0' .or. s(i:i) > '9') return
+            nd = nd + 1
+            i = i + 1
+         end do
+         if (nd == 0) return
+      end if
+      is_real_text = (i > n)
+   end function is_real_text
+
+end module deck_lexer

@@ -1,0 +1,343 @@
+!> HDF5 result file: the mesh once, then one group per increment.
+!!
+!! Layout (documented in docs/results-format.md; shapes as seen from C/Python):
+!!
+!!     /                       attributes: program, version, title, deck,
+!!                             analysis_type, ntype, ncase, status,
+!!                             increments_completed
+!!     /mesh/coordinates       (npoin, 2)   x, y  (r, z in axisymmetry)
+!!     /mesh/connectivity      (nelem, 9)   1-based node numbers, zero padded
+!!     /mesh/element_nodes     (nelem)      3, 4, 8 or 9
+!!     /mesh/material          (nelem)
+!!     /mesh/gauss_coordinates (ngp, 2)     Gauss points of all elements
+!!     /mesh/gauss_element     (ngp)        element of each Gauss point
+!!     /increments/NNNNN/      attributes: increment, load_factor(ncase),
+!!                             iterations, repeats, converged
+!!         displacement  (npoin, 2)
+!!         stress_nodal  (npoin, 4)  xx, yy, xy, zz (hoop in axisymmetry)
+!!         stress_gauss  (ngp, 4)
+!!         reaction      (npoin, 2)  zero at free dofs
+!!
+!! The file is flushed after every increment, so a run that stops early
+!! leaves every finished increment readable.  Every HDF5 return code is
+!! checked; a failure is returned as a status, never ignored.
+module results_hdf5
+   use, intrinsic :: iso_c_binding, only: c_double
+   use hdf5
+   use kinds, only: dp
+   use errors, only: status_t, STAT_IO
+   use strings, only: itoa
+   use model, only: model_t, ntype_name, MAX_NODE
+   implicit none
+   private
+   public :: results_file_t, K2D_VERSION
+
+   character(len=*), parameter :: K2D_VERSION = '0.1.0'
+
+   type :: results_file_t
+      integer(hid_t) :: fid = -1
+      character(len=:), allocatable :: path
+      integer :: ncompleted = 0
+      logical :: is_open = .false.
+   contains
+      procedure :: create => results_create
+      procedure :: open_increment => results_open_increment
+      procedure :: close_increment => results_close_increment
+      procedure :: set_status => results_set_status
+      procedure :: close => results_close
+      procedure, nopass :: write_real1, write_real2, write_int1, write_int2
+      procedure, nopass :: attr_int, attr_real1, attr_string
+   end type results_file_t
+
+   logical, save :: library_open = .false.
+
+contains
+
+   !> Create the file (truncating an old one) and write the mesh.
+   subroutine results_create(this, path, m, ngp_elem, xygp, status)
+      class(results_file_t), intent(inout) :: this
+      character(len=*), intent(in) :: path
+      type(model_t), intent(in) :: m
+      integer, intent(in) :: ngp_elem(:)       !! (nelem) Gauss points of each element
+      real(dp), intent(in) :: xygp(:, :)       !! (2, ngp) their coordinates
+      type(status_t), intent(inout) :: status
+      integer(hid_t) :: gid
+      integer :: err, ie, k, n
+      integer, allocatable :: conn(:, :), gel(:)
+
+      this%path = path
+      if (.not. library_open) then
+         call h5open_f(err)
+         if (fail(err, 'initialise the HDF5 library')) return
+         library_open = .true.
+      end if
+      call h5fcreate_f(path, H5F_ACC_TRUNC_F, this%fid, err)
+      if (fail(err, 'create the result file')) return
+      this%is_open = .true.
+      call attr_string(this%fid, 'program', 'Kontakt2D', err)
+      call attr_string(this%fid, 'version', K2D_VERSION, err)
+      call attr_string(this%fid, 'title', m%title, err)
+      call attr_string(this%fid, 'deck', m%deck_file, err)
+      call attr_string(this%fid, 'analysis_type', ntype_name(m%ntype), err)
+      call attr_int(this%fid, 'ntype', m%ntype, err)
+      call attr_int(this%fid, 'ncase', m%ncase, err)
+      call attr_string(this%fid, 'status', 'running', err)
+      call attr_int(this%fid, 'increments_completed', 0, err)
+      if (fail(err, 'write the file attributes')) return
+
+      call h5gcreate_f(this%fid, 'mesh', gid, err)
+      if (fail(err, 'create group /mesh')) return
+      call write_real2(gid, 'coordinates', m%coord, err)
+      allocate (conn(MAX_NODE, m%nelem))
+      conn = m%lnods
+      call write_int2(gid, 'connectivity', conn, err)
+      call write_int1(gid, 'element_nodes', m%nnode_e, err)
+      call write_int1(gid, 'material', m%matno, err)
+      call write_real2(gid, 'gauss_coordinates', xygp, err)
+      allocate (gel(size(xygp, 2)))
+      n = 0
+      do ie = 1, m%nelem
+         do k = 1, ngp_elem(ie)
+            n = n + 1
+            gel(n) = ie
+         end do
+      end do
+      call write_int1(gid, 'gauss_element', gel, err)
+      if (fail(err, 'write the mesh')) return
+      call h5gclose_f(gid, err)
+      call h5gcreate_f(this%fid, 'increments', gid, err)
+      if (fail(err, 'create group /increments')) return
+      call h5gclose_f(gid, err)
+      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, err)
+      if (fail(err, 'flush the result file')) return
+   contains
+      logical function fail(e, what)
+         integer, intent(in) :: e
+         character(len=*), intent(in) :: what
+         fail = e < 0
+         if (fail) call status%set(STAT_IO, 'HDF5: cannot '//what//' ('//path//')')
+      end function fail
+   end subroutine results_create
+
+   !> Create the group of increment inc with its attributes; return its id.
+   subroutine results_open_increment(this, inc, lambda, iterations, repeats, converged, gid, status)
+      class(results_file_t), intent(inout) :: this
+      integer, intent(in) :: inc
+      real(dp), intent(in) :: lambda(:)     !! total load factor of each case
+      integer, intent(in) :: iterations, repeats
+      logical, intent(in) :: converged
+      integer(hid_t), intent(out) :: gid
+      type(status_t), intent(inout) :: status
+      integer :: err
+      character(len=16) :: name
+
+      write (name, '(i5.5)') inc
+      call h5gcreate_f(this%fid, 'increments/'//trim(name), gid, err)
+      if (err < 0) then
+         call status%set(STAT_IO, 'HDF5: cannot create group /increments/'//trim(name)//' in '//this%path)
+         return
+      end if
+      call attr_int(gid, 'increment', inc, err)
+      call attr_real1(gid, 'load_factor', lambda, err)
+      call attr_int(gid, 'iterations', iterations, err)
+      call attr_int(gid, 'repeats', repeats, err)
+      call attr_int(gid, 'converged', merge(1, 0, converged), err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write attributes of increment '//itoa(inc))
+   end subroutine results_open_increment
+
+   !> Close an increment group, record it as completed and flush the file.
+   subroutine results_close_increment(this, gid, status)
+      class(results_file_t), intent(inout) :: this
+      integer(hid_t), intent(in) :: gid
+      type(status_t), intent(inout) :: status
+      integer :: err
+      call h5gclose_f(gid, err)
+      this%ncompleted = this%ncompleted + 1
+      call h5adelete_f(this%fid, 'increments_completed', err)
+      call attr_int(this%fid, 'increments_completed', this%ncompleted, err)
+      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot flush '//this%path)
+   end subroutine results_close_increment
+
+   !> Replace the root attribute `status` (running, completed, failed: ...).
+   subroutine results_set_status(this, text)
+      class(results_file_t), intent(inout) :: this
+      character(len=*), intent(in) :: text
+      integer :: err
+      if (.not. this%is_open) return
+      call h5adelete_f(this%fid, 'status', err)
+      call attr_string(this%fid, 'status', text, err)
+      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, err)
+   end subroutine results_set_status
+
+   subroutine results_close(this)
+      class(results_file_t), intent(inout) :: this
+      integer :: err
+      if (.not. this%is_open) return
+      call h5fclose_f(this%fid, err)
+      this%is_open = .false.
+   end subroutine results_close
+
+   ! ------------------------------------------------------------------ helpers
+   ! Each helper leaves err < 0 if any HDF5 call failed (errors accumulate).
+
+   subroutine write_real2(loc, name, a, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: a(:, :)
+      integer, intent(inout) :: err
+      integer(hid_t) :: sid, did
+      integer(hsize_t) :: dims(2)
+      integer :: e
+      dims = [size(a, 1, kind=hsize_t), size(a, 2, kind=hsize_t)]
+      call h5screate_simple_f(2, dims, sid, e)
+      call keep(e, err)
+      call h5dcreate_f(loc, name, H5T_NATIVE_DOUBLE, sid, did, e)
+      call keep(e, err)
+      if (e >= 0) then
+         call h5dwrite_f(did, H5T_NATIVE_DOUBLE, real(a, c_double), dims, e)
+         call keep(e, err)
+         call h5dclose_f(did, e)
+      end if
+      call h5sclose_f(sid, e)
+   end subroutine write_real2
+
+   subroutine write_real1(loc, name, a, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: a(:)
+      integer, intent(inout) :: err
+      integer(hid_t) :: sid, did
+      integer(hsize_t) :: dims(1)
+      integer :: e
+      dims = [size(a, kind=hsize_t)]
+      call h5screate_simple_f(1, dims, sid, e)
+      call keep(e, err)
+      call h5dcreate_f(loc, name, H5T_NATIVE_DOUBLE, sid, did, e)
+      call keep(e, err)
+      if (e >= 0) then
+         call h5dwrite_f(did, H5T_NATIVE_DOUBLE, real(a, c_double), dims, e)
+         call keep(e, err)
+         call h5dclose_f(did, e)
+      end if
+      call h5sclose_f(sid, e)
+   end subroutine write_real1
+
+   subroutine write_int1(loc, name, a, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: a(:)
+      integer, intent(inout) :: err
+      integer(hid_t) :: sid, did
+      integer(hsize_t) :: dims(1)
+      integer :: e
+      dims = [size(a, kind=hsize_t)]
+      call h5screate_simple_f(1, dims, sid, e)
+      call keep(e, err)
+      call h5dcreate_f(loc, name, H5T_NATIVE_INTEGER, sid, did, e)
+      call keep(e, err)
+      if (e >= 0) then
+         call h5dwrite_f(did, H5T_NATIVE_INTEGER, a, dims, e)
+         call keep(e, err)
+         call h5dclose_f(did, e)
+      end if
+      call h5sclose_f(sid, e)
+   end subroutine write_int1
+
+   subroutine write_int2(loc, name, a, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: a(:, :)
+      integer, intent(inout) :: err
+      integer(hid_t) :: sid, did
+      integer(hsize_t) :: dims(2)
+      integer :: e
+      dims = [size(a, 1, kind=hsize_t), size(a, 2, kind=hsize_t)]
+      call h5screate_simple_f(2, dims, sid, e)
+      call keep(e, err)
+      call h5dcreate_f(loc, name, H5T_NATIVE_INTEGER, sid, did, e)
+      call keep(e, err)
+      if (e >= 0) then
+         call h5dwrite_f(did, H5T_NATIVE_INTEGER, a, dims, e)
+         call keep(e, err)
+         call h5dclose_f(did, e)
+      end if
+      call h5sclose_f(sid, e)
+   end subroutine write_int2
+
+   subroutine attr_int(loc, name, v, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: v
+      integer, intent(inout) :: err
+      integer(hid_t) :: sid, aid
+      integer(hsize_t) :: dims(1) = [1]
+      integer :: e
+      call h5screate_f(H5S_SCALAR_F, sid, e)
+      call keep(e, err)
+      call h5acreate_f(loc, name, H5T_NATIVE_INTEGER, sid, aid, e)
+      call keep(e, err)
+      if (e >= 0) then
+         call h5awrite_f(aid, H5T_NATIVE_INTEGER, v, dims, e)
+         call keep(e, err)
+         call h5aclose_f(aid, e)
+      end if
+      call h5sclose_f(sid, e)
+   end subroutine attr_int
+
+   subroutine attr_real1(loc, name, v, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: v(:)
+      integer, intent(inout) :: err
+      integer(hid_t) :: sid, aid
+      integer(hsize_t) :: dims(1)
+      integer :: e
+      dims = [size(v, kind=hsize_t)]
+      call h5screate_simple_f(1, dims, sid, e)
+      call keep(e, err)
+      call h5acreate_f(loc, name, H5T_NATIVE_DOUBLE, sid, aid, e)
+      call keep(e, err)
+      if (e >= 0) then
+         call h5awrite_f(aid, H5T_NATIVE_DOUBLE, real(v, c_double), dims, e)
+         call keep(e, err)
+         call h5aclose_f(aid, e)
+      end if
+      call h5sclose_f(sid, e)
+   end subroutine attr_real1
+
+   subroutine attr_string(loc, name, v, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      character(len=*), intent(in) :: v
+      integer, intent(inout) :: err
+      integer(hid_t) :: sid, aid, tid
+      integer(hsize_t) :: dims(1) = [1]
+      integer :: e
+      call h5tcopy_f(H5T_FORTRAN_S1, tid, e)
+      call keep(e, err)
+      call h5tset_size_f(tid, int(max(len(v), 1), size_t), e)
+      call keep(e, err)
+      call h5screate_f(H5S_SCALAR_F, sid, e)
+      call keep(e, err)
+      call h5acreate_f(loc, name, tid, sid, aid, e)
+      call keep(e, err)
+      if (e >= 0) then
+         if (len(v) > 0) then
+            call h5awrite_f(aid, tid, v, dims, e)
+         else
+            call h5awrite_f(aid, tid, ' ', dims, e)
+         end if
+         call keep(e, err)
+         call h5aclose_f(aid, e)
+      end if
+      call h5sclose_f(sid, e)
+      call h5tclose_f(tid, e)
+   end subroutine attr_string
+
+   pure subroutine keep(e, err)
+      integer, intent(in) :: e
+      integer, intent(inout) :: err
+      if (e < 0) err = e
+   end subroutine keep
+end module results_hdf5

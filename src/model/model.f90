@@ -1,0 +1,115 @@
+!> The analysis model: mesh, materials, boundary conditions, loads and the
+!! load history, as read from the deck.  Plain data; no numerics here.
+!!
+!! Conventions (see docs/deck-format.md):
+!! * `ntype` 1 plane stress, 2 plane strain, 3 axisymmetric (x = r, y = z).
+!! * Element nodes: corners anticlockwise, then midside nodes, then the centre.
+!! * Loads and prescribed displacements belong to a load case; the load history
+!!   gives, for every increment, the total factor of every case.
+module model
+   use kinds, only: dp
+   implicit none
+   private
+
+   public :: model_t, material_t, restraint_t, point_load_t, edge_load_t, body_load_t
+   public :: NTYPE_PLANE_STRESS, NTYPE_PLANE_STRAIN, NTYPE_AXISYMMETRIC, ntype_name
+   public :: MAX_NODE
+
+   integer, parameter :: NTYPE_PLANE_STRESS = 1
+   integer, parameter :: NTYPE_PLANE_STRAIN = 2
+   integer, parameter :: NTYPE_AXISYMMETRIC = 3
+   integer, parameter :: MAX_NODE = 9   !! largest element (Q9)
+
+   !> Isotropic linear-elastic material.
+   type :: material_t
+      real(dp) :: young = 0.0_dp   !! Young's modulus E
+      real(dp) :: poiss = 0.0_dp   !! Poisson's ratio nu
+      real(dp) :: thick = 1.0_dp   !! thickness (plane problems)
+      integer :: line = 0          !! deck line, for messages
+   end type material_t
+
+   !> Restrained node: fixed or prescribed displacement components.
+   type :: restraint_t
+      integer :: node = 0
+      logical :: fixed(2) = .false.     !! x (r) and y (z) restrained
+      real(dp) :: value(2) = 0.0_dp     !! prescribed displacement at load factor 1
+      integer :: icase = 1              !! load case that scales `value`
+      integer :: line = 0
+   end type restraint_t
+
+   !> Concentrated nodal force (a total ring force in axisymmetry).
+   type :: point_load_t
+      integer :: node = 0
+      real(dp) :: force(2) = 0.0_dp
+      integer :: icase = 1
+      integer :: line = 0
+   end type point_load_t
+
+   !> Distributed load on one element edge: normal pressure and tangential traction.
+   type :: edge_load_t
+      integer :: ielem = 0
+      integer :: nn = 0                 !! 2 (linear edge) or 3 (quadratic edge)
+      integer :: nodes(3) = 0           !! (start, end, mid) in the element's anticlockwise order
+      real(dp) :: pn(3) = 0.0_dp        !! pressure at the nodes, positive compressive
+      real(dp) :: pt(3) = 0.0_dp        !! tangential traction, positive from start to end
+      integer :: icase = 1
+      integer :: line = 0
+   end type edge_load_t
+
+   !> Uniform body force per unit volume on the elements of one material (0 = all).
+   type :: body_load_t
+      integer :: imat = 0
+      real(dp) :: b(2) = 0.0_dp
+      integer :: icase = 1
+      integer :: line = 0
+   end type body_load_t
+
+   type :: model_t
+      character(len=:), allocatable :: title
+      character(len=:), allocatable :: deck_file
+      integer :: ntype = NTYPE_PLANE_STRAIN
+      integer :: npoin = 0
+      integer :: nelem = 0
+      integer :: nnode = 0              !! nodes per element declared on the control card
+      integer :: nmats = 0
+      integer :: ngaus = 0              !! 0 = default rule of each element
+      integer :: ncase = 1              !! number of load cases
+      character(len=:), allocatable :: solver_name
+      ! mesh
+      real(dp), allocatable :: coord(:, :)   !! (2, npoin)
+      integer, allocatable :: lnods(:, :)    !! (MAX_NODE, nelem), zero padded
+      integer, allocatable :: nnode_e(:)     !! nodes of each element
+      integer, allocatable :: matno(:)       !! material of each element
+      integer, allocatable :: node_line(:)   !! deck line of each node card
+      integer, allocatable :: elem_line(:)   !! deck line of each element card
+      ! materials, boundary conditions, loads
+      type(material_t), allocatable :: mats(:)
+      type(restraint_t), allocatable :: fixes(:)
+      type(point_load_t), allocatable :: point_loads(:)
+      type(edge_load_t), allocatable :: edge_loads(:)
+      type(body_load_t), allocatable :: body_loads(:)
+      ! load history: lambda(icase, i) is the total factor of case icase after increment i
+      integer :: nincs = 0
+      real(dp), allocatable :: lambda(:, :)  !! (ncase, 0:nincs)
+      ! output control
+      character(len=:), allocatable :: listing_level  !! FULL, SHORT or NONE
+   end type model_t
+
+contains
+
+   !> Name of an analysis type, for listings and result files.
+   pure function ntype_name(ntype) result(s)
+      integer, intent(in) :: ntype
+      character(len=:), allocatable :: s
+      select case (ntype)
+      case (NTYPE_PLANE_STRESS)
+         s = 'plane stress'
+      case (NTYPE_PLANE_STRAIN)
+         s = 'plane strain'
+      case (NTYPE_AXISYMMETRIC)
+         s = 'axisymmetric'
+      case default
+         s = 'unknown'
+      end select
+   end function ntype_name
+end module model

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Kontakt2D: the main job in one command.
+#   tools/run.sh [DECK] [kontakt2d options]
+# Installs missing Debian packages, builds (Release) if needed, solves DECK
+# (default: the example deck inputs/lame_cylinder.dat), writes the HDF5 results,
+# the listing and a plot into results/<deck name>/ and says where they are.
+set -euo pipefail
+source "$(dirname "$0")/setup.sh"
+
+deck=${1:-$K2D_ROOT/inputs/lame_cylinder.dat}
+[ $# -gt 0 ] && shift
+if [ ! -f "$deck" ]; then k2d_log "no such deck: $deck"; exit 2; fi
+
+k2d_ensure_packages
+k2d_build Release "$K2D_ROOT/build"
+
+name=$(basename "${deck%.*}")
+out="$K2D_ROOT/results/$name"
+mkdir -p "$out"
+"$K2D_ROOT/build/kontakt2d" "$deck" -o "$out/$name.h5" "$@"
+"$K2D_PYTHON" "$K2D_ROOT/tools/plot_results.py" "$out/$name.h5" -o "$out/$name.png"
+echo "results: $out/$name.h5 (HDF5), $out/$name.lis (listing), $out/$name.png (plot)"

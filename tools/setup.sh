@@ -1,0 +1,41 @@
+# Shared set-up for tools/run.sh and tools/test.sh (sourced, not run).
+# Installs the Debian packages Kontakt2D needs when any is missing, and
+# configures and builds the project with CMake.
+
+K2D_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+K2D_PACKAGES="gfortran gcc make cmake liblapack-dev libblas-dev libsuitesparse-dev \
+libhdf5-dev hdf5-tools gmsh python3 python3-h5py python3-numpy python3-matplotlib"
+# Python tools run on Debian's interpreter with Debian's packages.
+K2D_PYTHON=/usr/bin/python3
+
+k2d_log() { printf '[kontakt2d] %s\n' "$*" >&2; }
+
+# Install missing Debian packages (apt-get update first), as root or via sudo.
+k2d_ensure_packages() {
+  local missing=() p
+  for p in $K2D_PACKAGES; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1; then sudo="sudo"; else
+      k2d_log "missing Debian packages: ${missing[*]}"
+      k2d_log "run as root (or install them) and try again"; return 1
+    fi
+  fi
+  k2d_log "installing Debian packages: ${missing[*]}"
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -q >&2
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}" >&2
+}
+
+# Configure (once) and build.  $1 = build type (Release or Debug), $2 = build dir.
+k2d_build() {
+  local type=${1:-Release} dir=${2:-$K2D_ROOT/build}
+  if [ ! -f "$dir/CMakeCache.txt" ]; then
+    k2d_log "configuring $type build in $dir"
+    cmake -S "$K2D_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE="$type" >&2
+  fi
+  k2d_log "building"
+  cmake --build "$dir" -j "$(nproc 2>/dev/null || echo 2)" >&2
+}

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Kontakt2D: the whole test suite in one command.
+#   tools/test.sh [ctest options]          (BUILD_TYPE=Debug tools/test.sh for the Debug build)
+# Installs missing Debian packages, builds, and runs every test through ctest;
+# the last lines are ctest's summary.
+set -euo pipefail
+source "$(dirname "$0")/setup.sh"
+
+type=${BUILD_TYPE:-Release}
+dir="$K2D_ROOT/build"
+[ "$type" != "Release" ] && dir="$K2D_ROOT/build-$(echo "$type" | tr '[:upper:]' '[:lower:]')"
+
+k2d_ensure_packages
+k2d_build "$type" "$dir"
+cd "$dir"
+exec ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "$@"
