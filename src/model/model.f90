@@ -11,7 +11,8 @@ module model
    implicit none
    private
 
-   public :: model_t, material_t, restraint_t, point_load_t, edge_load_t, body_load_t
+   public :: model_t, material_t, restraint_t, point_load_t, edge_load_t, body_load_t, &
+             node_set_t, edge_set_t, find_node_set, find_edge_set
    public :: NTYPE_PLANE_STRESS, NTYPE_PLANE_STRAIN, NTYPE_AXISYMMETRIC, ntype_name
    public :: MAX_NODE
 
@@ -64,6 +65,20 @@ module model
       integer :: line = 0
    end type body_load_t
 
+   !> A named set of nodes (a gmsh physical point or curve, or a deck-defined set).
+   type :: node_set_t
+      character(len=:), allocatable :: name
+      integer, allocatable :: nodes(:)
+   end type node_set_t
+
+   !> A named set of element edges (a gmsh physical curve): edge `iedge(k)` of
+   !! element `ielem(k)`, numbered as in docs/elements.md.
+   type :: edge_set_t
+      character(len=:), allocatable :: name
+      integer, allocatable :: ielem(:)
+      integer, allocatable :: iedge(:)
+   end type edge_set_t
+
    type :: model_t
       character(len=:), allocatable :: title
       character(len=:), allocatable :: deck_file
@@ -91,11 +106,53 @@ module model
       ! load history: lambda(icase, i) is the total factor of case icase after increment i
       integer :: nincs = 0
       real(dp), allocatable :: lambda(:, :)  !! (ncase, 0:nincs)
+      ! named sets (from gmsh physical groups or the deck)
+      type(node_set_t), allocatable :: node_sets(:)
+      type(edge_set_t), allocatable :: edge_sets(:)
       ! output control
       character(len=:), allocatable :: listing_level  !! FULL, SHORT or NONE
    end type model_t
 
 contains
+
+   !> Index of the node set called `name` (case-insensitive), 0 if none.
+   pure integer function find_node_set(m, name) result(k)
+      type(model_t), intent(in) :: m
+      character(len=*), intent(in) :: name
+      k = 0
+      if (.not. allocated(m%node_sets)) return
+      do k = 1, size(m%node_sets)
+         if (same_name(m%node_sets(k)%name, name)) return
+      end do
+      k = 0
+   end function find_node_set
+
+   !> Index of the edge set called `name` (case-insensitive), 0 if none.
+   pure integer function find_edge_set(m, name) result(k)
+      type(model_t), intent(in) :: m
+      character(len=*), intent(in) :: name
+      k = 0
+      if (.not. allocated(m%edge_sets)) return
+      do k = 1, size(m%edge_sets)
+         if (same_name(m%edge_sets(k)%name, name)) return
+      end do
+      k = 0
+   end function find_edge_set
+
+   pure logical function same_name(a, b)
+      character(len=*), intent(in) :: a, b
+      integer :: i, ca, cb
+      same_name = .false.
+      if (len_trim(a) /= len_trim(b)) return
+      do i = 1, len_trim(a)
+         ca = iachar(a(i:i))
+         cb = iachar(b(i:i))
+         if (ca >= 97 .and. ca <= 122) ca = ca - 32
+         if (cb >= 97 .and. cb <= 122) cb = cb - 32
+         if (ca /= cb) return
+      end do
+      same_name = .true.
+   end function same_name
 
    !> Name of an analysis type, for listings and result files.
    pure function ntype_name(ntype) result(s)
