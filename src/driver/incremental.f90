@@ -1,32 +1,47 @@
 !> The incremental driver: owns the loop over load increments.
 !!
-!! Set-up: equation numbering, equation graph, symbolic analysis, K_AB
-!! assembled once (bodies are linear elastic, small strain: eq. 4.12) and kept
-!! in the solver as its base matrix, load vectors of every load case.
-!! Per increment i: the increments of every load case's factor scale the
-!! external forces and the prescribed displacements; the system is solved for
-!! the displacement increment; totals are sums of increments (eqs. 3.34-3.35);
-!! stresses and reactions are recovered; the increment is written to the HDF5
-!! file and flushed.
+!! Set-up: equation numbering (with ties), the equation graph including every
+!! contact pair, symbolic analysis, K_AB assembled once (bodies are linear
+!! elastic, small strain: eq. 4.12) and kept in the solver as its base matrix,
+!! load vectors of every load case.
 !!
-!! A numerical failure (singular matrix, ...) stops the loop cleanly: every
-!! finished increment stays in the result file, whose status attribute says
-!! what happened.
+!! Increment i (eqs. 3.15, 3.37, 3.38): the factors of the load cases scale the
+!! external forces and the prescribed displacements; the contact springs get
+!! their modes and stiffnesses from the previous increment; then
+!!
+!!     repeat:  [K_AB + K_c] dv = b        (b = load increment + carried
+!!                                          out-of-balance, then the residual)
+!!              evaluate the springs for the increment so far
+!!              residual = predicted - actual spring forces
+!!     until no spring changes its mode and the residual vanishes
+!!
+!! (for the paper's explicit update a repeat is the paper's repetition of the
+!! increment with new stiffnesses, solved for the correction).  Totals are sums
+!! of increments (eqs. 3.34-3.36).  Stresses, reactions and the contact
+!! quantities are written to the HDF5 file, which is flushed.
+!!
+!! A numerical failure stops the loop cleanly: every finished increment stays
+!! in the result file, whose status attribute says what happened.
 module incremental
    use kinds, only: dp, stdout, stderr
-   use errors, only: status_t, STAT_SINGULAR, STAT_INPUT, STAT_IO, STAT_JACOBIAN
+   use errors, only: status_t, STAT_SINGULAR, STAT_INPUT, STAT_IO, STAT_JACOBIAN, STAT_NO_CONVERGENCE
    use strings, only: itoa, rtoa, strip_extension, basename
    use model, only: model_t, MAX_NODE
    use dof_map, only: dof_map_t, build_dof_map
    use graph, only: build_node_graph, build_equation_graph
    use linear_solver, only: linear_solver_t
    use solver_factory, only: create_solver
-   use assembly, only: coupling_t, assemble_bodies, assemble_load_cases, element_equations, &
+   use assembly, only: coupling_t, assemble_bodies, assemble_load_cases, &
                        subtract_prescribed, restrained_forces, element_error
    use solid2d, only: element_stresses
    use quadrature, only: max_gp
+   use contact_types, only: UPDATE_RETURN, contact_pair_t
+   use contact_algorithm, only: contact_state_t, contact_init, begin_increment, pair_matrix, &
+                                evaluate_pairs, commit_increment, pair_force_vector, law_drift, &
+                                NS_OPEN, NS_LOADING, NS_UNLOADING, TS_SLIP
+   use restraint_check, only: find_bodies
    use results_hdf5, only: results_file_t, K2D_VERSION
-   use listing, only: list_header, list_input, list_displacements, list_stresses
+   use listing, only: list_header, list_input, list_displacements, list_stresses, list_contact
    use hdf5, only: hid_t
    implicit none
    private
@@ -35,7 +50,7 @@ module incremental
    !> Choices of the command line that override or complement the deck.
    type :: run_options_t
       character(len=:), allocatable :: results_path   !! HDF5 file ('' = <deck>.h5 in the working directory)
-      character(len=:), allocatable :: listing_path   !! listing file ('' = <deck>.lis next to the results)
+      character(len=:), allocatable :: listing_path   !! listing file ('' = <results>.lis)
       character(len=:), allocatable :: solver_name    !! '' = the deck's choice
       logical :: quiet = .false.                      !! no terminal output except errors
    end type run_options_t
@@ -49,6 +64,11 @@ module incremental
       real(dp), allocatable :: sig_gp(:, :)      !! (4, ngp) Gauss-point stresses
       real(dp), allocatable :: xygp(:, :)        !! (2, ngp)
       integer, allocatable :: gp_start(:)        !! (nelem+1)
+      type(contact_state_t) :: contact           !! committed contact states
+      integer, allocatable :: iterations(:)      !! solves per increment
+      integer, allocatable :: repeats(:)         !! repeats (mode changes) per increment
+      real(dp), allocatable :: residual(:)       !! relative out-of-balance force after each increment
+      real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
       character(len=:), allocatable :: results_path
    end type run_result_t
 
@@ -64,23 +84,28 @@ contains
       class(linear_solver_t), allocatable :: solver
       type(coupling_t) :: coup
       type(results_file_t) :: rf
-      integer, allocatable :: order(:), nxadj(:), nadj(:), xadj(:), adjncy(:), nolinks(:, :)
-      real(dp), allocatable :: fcase(:, :, :), ucase(:, :, :), fext(:, :), du(:, :), rhs(:), fr(:, :)
-      real(dp), allocatable :: dlam(:)
-      logical, allocatable :: restrained(:, :)
-      integer :: ip, inc, ieq, lu, ic
+      integer, allocatable :: order(:), nxadj(:), nadj(:), xadj(:), adjncy(:), links(:, :), peq(:, :)
+      real(dp), allocatable :: fcase(:, :, :), ucase(:, :, :), fext(:, :), du(:, :), ddu(:, :), rhs(:), fr(:, :)
+      real(dp), allocatable :: dlam(:), carry(:), rvec(:, :), rpred(:, :), kstore(:, :, :), fsp(:, :)
+      logical, allocatable :: restrained(:, :), changed(:)
+      integer :: ip, inc, idof, lu, ic, j, iter, nrep, npair
+      logical :: have_lis
       integer(hid_t) :: gid
       integer(kind=8) :: t0, t1, rate
-      character(len=:), allocatable :: solver_name, base, lis_path, lis_level
-      logical :: factored
+      character(len=:), allocatable :: solver_name, lis_path, lis_level
+      logical :: has_contact, need_factor, converged, returning
+      real(dp) :: fscale, rnorm, gap_tol
 
       call system_clock(t0, rate)
+      call complete_model(m)
+      has_contact = m%contact%active
+      npair = size(m%contact%pairs)
+      returning = m%contact%opts%update == UPDATE_RETURN
       solver_name = m%solver_name
       if (allocated(opts%solver_name)) then
          if (len(opts%solver_name) > 0) solver_name = opts%solver_name
       end if
-      base = strip_extension(basename(m%deck_file))
-      res%results_path = base//'.h5'
+      res%results_path = strip_extension(basename(m%deck_file))//'.h5'
       if (allocated(opts%results_path)) then
          if (len(opts%results_path) > 0) res%results_path = opts%results_path
       end if
@@ -90,11 +115,14 @@ contains
       end if
       lis_level = m%listing_level
 
-      ! ---- equations, pattern, K_AB
-      allocate (order(m%npoin), nolinks(2, 0))
+      ! ---- equations (ties share equations), pattern with every pair, K_AB
+      allocate (order(m%npoin), links(2, npair))
       order = [(ip, ip=1, m%npoin)]
-      call build_dof_map(m, order, map)
-      call build_node_graph(m, nolinks, nxadj, nadj)
+      do j = 1, npair
+         links(:, j) = [m%contact%pairs(j)%node_a, m%contact%pairs(j)%node_b]
+      end do
+      call build_dof_map(m, order, map, m%ties)
+      call build_node_graph(m, links, nxadj, nadj)
       call build_equation_graph(map, nxadj, nadj, xadj, adjncy)
       call create_solver(solver_name, solver, status)
       if (.not. status%ok()) then
@@ -113,10 +141,29 @@ contains
       allocate (restrained(2, m%npoin))
       restrained = map%id < 0
       allocate (res%disp(2, m%npoin), res%react(2, m%npoin), fext(2, m%npoin), du(2, m%npoin), &
-                rhs(map%neq), fr(2, m%npoin), dlam(m%ncase))
+                ddu(2, m%npoin), rhs(map%neq), fr(2, m%npoin), dlam(m%ncase), carry(map%neq), fsp(2, m%npoin))
+      allocate (res%iterations(m%nincs), res%repeats(m%nincs), res%residual(m%nincs), res%drift(m%nincs))
+      res%iterations = 0
+      res%repeats = 0
+      res%residual = 0.0_dp
+      res%drift = 0.0_dp
       res%disp = 0.0_dp
       res%react = 0.0_dp
       fext = 0.0_dp
+      carry = 0.0_dp
+
+      ! ---- contact: initial states, start pressure of eq. (4.1)
+      allocate (rvec(4, npair), rpred(4, npair), kstore(4, 4, npair), changed(npair), peq(4, npair))
+      do j = 1, npair
+         peq(:, j) = [map%id(:, m%contact%pairs(j)%node_a), map%id(:, m%contact%pairs(j)%node_b)]
+      end do
+      gap_tol = m%contact%opts%gap_tol
+      if (gap_tol < 0.0_dp) gap_tol = 1.0e-9_dp*model_size(m)
+      call contact_init(m%contact, gap_tol, res%contact)
+      if (has_contact) then
+         call start_pressure(m, fcase, m%lambda(:, 1) - m%lambda(:, 0), res%contact, status)
+         if (.not. status%ok()) return
+      end if
 
       ! ---- stress recovery layout (Gauss points are fixed)
       call recover_stresses(m, res%disp, res%gp_start, res%xygp, res%sig_gp, res%sig_nd, status)
@@ -125,8 +172,13 @@ contains
       ! ---- result file and listing
       call rf%create(res%results_path, m, res%gp_start(2:) - res%gp_start(:m%nelem), res%xygp, status)
       if (.not. status%ok()) return
-      lu = -1
-      if (lis_level /= 'NONE') then
+      if (has_contact) then
+         call rf%write_contact_definition(m%contact, status)
+         if (.not. status%ok()) return
+      end if
+      have_lis = lis_level /= 'NONE'
+      lu = 0
+      if (have_lis) then
          open (newunit=lu, file=lis_path, status='replace', action='write')
          call list_header(lu, m, K2D_VERSION, solver%name(), map%neq, map%nres)
          if (lis_level == 'FULL') call list_input(lu, m)
@@ -134,59 +186,135 @@ contains
       if (.not. opts%quiet) then
          call list_header(stdout, m, K2D_VERSION, solver%name(), map%neq, map%nres)
          write (stdout, '(a)') ' Results      : '//res%results_path
-         if (lu > 0) write (stdout, '(a)') ' Listing      : '//lis_path
+         if (have_lis) write (stdout, '(a)') ' Listing      : '//lis_path
          write (stdout, '(a)') repeat('-', 78)
-         write (stdout, '(a)') '   inc  load factor     max |u|        sum Rx        sum Ry    time [s]'
+         if (has_contact) then
+            write (stdout, '(a)') '   inc  load factor     max |u|  closed  slip  solves rep   residual    time [s]'
+         else
+            write (stdout, '(a)') '   inc  load factor     max |u|        sum Rx        sum Ry    time [s]'
+         end if
       end if
 
       ! ---- the loop over increments
-      factored = .false.
+      need_factor = .true.
       do inc = 1, m%nincs
          dlam = m%lambda(:, inc) - m%lambda(:, inc - 1)
          du = 0.0_dp
-         rhs = 0.0_dp
+         rhs = carry
          do ic = 1, m%ncase
             fext = fext + dlam(ic)*fcase(:, :, ic)
             where (restrained) du = du + dlam(ic)*ucase(:, :, ic)
          end do
          do ip = 1, m%npoin
-            do ieq = 1, 2
-               if (map%id(ieq, ip) > 0) then
-                  rhs(map%id(ieq, ip)) = rhs(map%id(ieq, ip)) + sum(dlam*fcase(ieq, ip, :))
-               end if
+            do idof = 1, 2
+               if (map%id(idof, ip) > 0) rhs(map%id(idof, ip)) = rhs(map%id(idof, ip)) + sum(dlam*fcase(idof, ip, :))
             end do
          end do
          call subtract_prescribed(coup, map, du, rhs)
+         fscale = max(maxval(abs(rhs)), maxval(abs(fext)), 1.0e-300_dp)
 
-         if (.not. factored) then
-            call solver%restore_base()
-            call solver%factorize(status)
-            if (.not. status%ok()) then
-               if (status%code == STAT_SINGULAR .and. solver%failed_equation() > 0) then
-                  status%message = 'singular or unrestrained model at '// &
-                                   map%describe(solver%failed_equation())//': '//status%message
+         ! spring forces at the start of the increment
+         if (has_contact) then
+            call begin_increment(m%contact, res%contact, inc == 1)
+            do j = 1, npair
+               call pair_force_vector(m%contact, j, res%contact%s(j)%fn, res%contact%s(j)%ft, rvec(:, j))
+            end do
+            need_factor = .true.
+         end if
+
+         ! repeat the increment until the springs keep their modes and balance
+         ddu = du           ! first solve: prescribed increments at the restrained dofs
+         nrep = 0
+         converged = .false.
+         do iter = 1, max(1, m%contact%opts%max_repeats)
+            if (need_factor) then
+               call solver%restore_base()
+               do j = 1, npair
+                  call pair_matrix(m%contact, res%contact, j, kstore(:, :, j))
+                  call solver%add_element(peq(:, j), kstore(:, :, j))
+               end do
+               call solver%factorize(status)
+               if (.not. status%ok()) then
+                  if (status%code == STAT_SINGULAR .and. solver%failed_equation() > 0) then
+                     status%message = 'singular or unrestrained model at '// &
+                                      map%describe(solver%failed_equation())//': '//status%message
+                  end if
+                  exit
                end if
+               need_factor = has_contact .and. returning
+            end if
+            if (iter == 1) call subtract_contact_prescribed(peq, kstore, m%contact%pairs, ddu, rhs)
+            call solver%solve(rhs, status)
+            if (.not. status%ok()) exit
+            do ip = 1, m%npoin
+               do idof = 1, 2
+                  if (map%id(idof, ip) > 0) ddu(idof, ip) = rhs(map%id(idof, ip))
+               end do
+            end do
+            du = du + merge(0.0_dp, ddu, restrained)
+            if (.not. has_contact) then
+               converged = .true.
                exit
             end if
-            factored = .true.
-         end if
-         call solver%solve(rhs, status)
-         if (.not. status%ok()) exit
-         do ip = 1, m%npoin
-            do ieq = 1, 2
-               if (map%id(ieq, ip) > 0) du(ieq, ip) = rhs(map%id(ieq, ip))
+            ! predicted spring forces (the linearisation the solve used) ...
+            do j = 1, npair
+               rpred(:, j) = rvec(:, j) + matmul(kstore(:, :, j), pair_values(ddu, m%contact%pairs(j)))
             end do
+            ! ... against the actual ones, after the mode checks
+            call evaluate_pairs(m%contact, res%contact, du, changed, inc == 1)
+            do j = 1, npair
+               call pair_force_vector(m%contact, j, res%contact%fn(j), res%contact%ft(j), rvec(:, j))
+            end do
+            rhs = 0.0_dp
+            do j = 1, npair
+               call scatter_free(peq(:, j), rpred(:, j) - rvec(:, j), rhs)
+            end do
+            rnorm = 0.0_dp
+            if (map%neq > 0) rnorm = maxval(abs(rhs))/fscale
+            ddu = 0.0_dp
+            if (any(changed)) then
+               nrep = nrep + 1
+               need_factor = .true.
+               cycle
+            end if
+            if (rnorm <= m%contact%opts%tol_residual) then
+               converged = .true.
+               exit
+            end if
          end do
+         if (.not. status%ok()) exit
+         res%iterations(inc) = iter
+         if (iter > max(1, m%contact%opts%max_repeats)) res%iterations(inc) = iter - 1
+         res%repeats(inc) = nrep
+         if (has_contact) then
+            res%residual(inc) = rnorm
+            carry = rhs
+            if (.not. converged .and. (returning .or. any(changed))) then
+               call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
+                               itoa(res%iterations(inc))//' solutions ('//merge('contact states keep changing', &
+                               'out-of-balance force '//rtoa(rnorm)//' ', any(changed))// &
+                               '); reduce the increment size or raise CONTACT REPEATS')
+               exit
+            end if
+            call commit_increment(m%contact, res%contact)
+            res%drift(inc) = law_drift(m%contact, res%contact)
+         end if
          res%disp = res%disp + du
 
          ! ---- post-processing
          call recover_stresses(m, res%disp, res%gp_start, res%xygp, res%sig_gp, res%sig_nd, status)
          if (.not. status%ok()) exit
          call restrained_forces(coup, map, res%disp, fr)
+         fsp = 0.0_dp
+         do j = 1, npair
+            call pair_force_vector(m%contact, j, res%contact%s(j)%fn, res%contact%s(j)%ft, rvec(:, j))
+            fsp(:, m%contact%pairs(j)%node_a) = fsp(:, m%contact%pairs(j)%node_a) + rvec(1:2, j)
+            fsp(:, m%contact%pairs(j)%node_b) = fsp(:, m%contact%pairs(j)%node_b) + rvec(3:4, j)
+         end do
          res%react = 0.0_dp
-         where (restrained) res%react = fr - fext
+         where (restrained) res%react = fr + fsp - fext
 
-         call rf%open_increment(inc, m%lambda(:, inc), 1, 0, .true., gid, status)
+         call rf%open_increment(inc, m%lambda(:, inc), res%iterations(inc), nrep, converged, gid, status)
          if (.not. status%ok()) exit
          block
             integer :: err
@@ -195,22 +323,33 @@ contains
             call rf%write_real2(gid, 'stress_nodal', res%sig_nd, err)
             call rf%write_real2(gid, 'stress_gauss', res%sig_gp, err)
             call rf%write_real2(gid, 'reaction', res%react, err)
+            if (has_contact) call rf%attr_real0(gid, 'residual', res%residual(inc), err)
             if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(inc))
          end block
+         if (has_contact .and. status%ok()) call write_contact_results(rf, gid, m, res%contact, status)
          if (.not. status%ok()) exit
          call rf%close_increment(gid, status)
          if (.not. status%ok()) exit
          res%completed = inc
 
-         if (lu > 0 .and. (lis_level == 'FULL' .or. inc == m%nincs)) then
+         if (have_lis .and. (lis_level == 'FULL' .or. inc == m%nincs)) then
             call list_displacements(lu, m, inc, m%lambda(:, inc), res%disp, res%react, restrained)
+            if (has_contact) call list_contact(lu, m%contact, res%contact, res%iterations(inc), nrep, &
+                                               res%residual(inc), res%drift(inc))
             call list_stresses(lu, m, res%gp_start, res%xygp, res%sig_gp)
          end if
          call system_clock(t1)
          if (.not. opts%quiet) then
-            write (stdout, '(i6, f13.5, 3es14.5, f12.3)') inc, maxval(abs(m%lambda(:, inc))), &
-               maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), sum(res%react(1, :)), &
-               sum(res%react(2, :)), real(t1 - t0, dp)/real(rate, dp)
+            if (has_contact) then
+               write (stdout, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') inc, maxval(abs(m%lambda(:, inc))), &
+                  maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), count(res%contact%s%closed), &
+                  count(res%contact%s%closed .and. res%contact%s%tstate == TS_SLIP), res%iterations(inc), nrep, &
+                  res%residual(inc), real(t1 - t0, dp)/real(rate, dp)
+            else
+               write (stdout, '(i6, f13.5, 3es14.5, f12.3)') inc, maxval(abs(m%lambda(:, inc))), &
+                  maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), sum(res%react(1, :)), &
+                  sum(res%react(2, :)), real(t1 - t0, dp)/real(rate, dp)
+            end if
             flush (stdout)
          end if
       end do
@@ -228,9 +367,185 @@ contains
             res%results_path
       end if
       call rf%close()
-      if (lu > 0) close (lu)
+      if (have_lis) close (lu)
       call solver%free()
    end subroutine run_analysis
+
+   !> Give a model built in code the empty parts a deck would have.
+   subroutine complete_model(m)
+      type(model_t), intent(inout) :: m
+      if (.not. allocated(m%ties)) allocate (m%ties(3, 0))
+      if (.not. allocated(m%contact%pairs)) allocate (m%contact%pairs(0))
+      if (.not. allocated(m%contact%ifaces)) allocate (m%contact%ifaces(0))
+      m%contact%active = size(m%contact%pairs) > 0
+   end subroutine complete_model
+
+   pure real(dp) function model_size(m)
+      type(model_t), intent(in) :: m
+      model_size = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), maxval(m%coord(2, :)) - minval(m%coord(2, :)))
+   end function model_size
+
+   !> The four dof values (a_x, a_y, b_x, b_y) of a pair from a nodal field.
+   pure function pair_values(v, pr) result(x)
+      real(dp), intent(in) :: v(:, :)
+      type(contact_pair_t), intent(in) :: pr
+      real(dp) :: x(4)
+      x = [v(:, pr%node_a), v(:, pr%node_b)]
+   end function pair_values
+
+   !> Add a pair's vector to the free equations.
+   pure subroutine scatter_free(ieq, v, b)
+      integer, intent(in) :: ieq(4)
+      real(dp), intent(in) :: v(4)
+      real(dp), intent(inout) :: b(:)
+      integer :: k
+      do k = 1, 4
+         if (ieq(k) > 0) b(ieq(k)) = b(ieq(k)) + v(k)
+      end do
+   end subroutine scatter_free
+
+   !> b(free) -= K_c u_r: springs attached to prescribed displacements.
+   pure subroutine subtract_contact_prescribed(peq, kstore, pairs, u, b)
+      integer, intent(in) :: peq(:, :)
+      real(dp), intent(in) :: kstore(:, :, :)
+      type(contact_pair_t), intent(in) :: pairs(:)
+      real(dp), intent(in) :: u(:, :)
+      real(dp), intent(inout) :: b(:)
+      real(dp) :: x(4)
+      integer :: j
+      do j = 1, size(pairs)
+         if (all(peq(:, j) > 0)) cycle
+         x = pair_values(u, pairs(j))
+         where (peq(:, j) > 0) x = 0.0_dp
+         call scatter_free(peq(:, j), -matmul(kstore(:, :, j), x), b)
+      end do
+   end subroutine subtract_contact_prescribed
+
+   !> Start pressure p_m of eq. (4.1) for every interface: the resultant of the
+   !! first load increment on body A, projected on the mean contact normal,
+   !! over the nominal area of the initially closed pairs; or START PM.
+   subroutine start_pressure(m, fcase, dlam1, st, status)
+      type(model_t), intent(in) :: m
+      real(dp), intent(in) :: fcase(:, :, :), dlam1(:)
+      type(contact_state_t), intent(inout) :: st
+      type(status_t), intent(inout) :: status
+      integer, allocatable :: body(:), nolinks(:, :)
+      logical, allocatable :: in_a(:)
+      real(dp) :: f(2), nbar(2), aa, fn, df(2)
+      integer :: nbody, ip, j, ic
+      logical :: any_closed
+
+      st%p_start = m%contact%opts%p_start
+      if (st%p_start > 0.0_dp) return
+      allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin))
+      call find_bodies(m, nolinks, body, nbody)
+      in_a = .false.
+      nbar = 0.0_dp
+      aa = 0.0_dp
+      any_closed = .false.
+      do j = 1, size(m%contact%pairs)
+         associate (pr => m%contact%pairs(j))
+            if (body(pr%node_a) > 0) in_a = in_a .or. body == body(pr%node_a)
+            if (.not. st%s(j)%closed) cycle
+            any_closed = .true.
+            aa = aa + pr%area
+            nbar = nbar + pr%area*pr%n
+         end associate
+      end do
+      if (.not. any_closed) then
+         st%p_start = 0.0_dp
+         return
+      end if
+      f = 0.0_dp
+      do ip = 1, m%npoin
+         if (.not. in_a(ip)) cycle
+         do ic = 1, size(dlam1)
+            df = dlam1(ic)*fcase(:, ip, ic)
+            f = f + df
+         end do
+      end do
+      nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
+      fn = abs(dot_product(f, nbar))
+      if (.not. (fn > 0.0_dp) .or. .not. (aa > 0.0_dp)) then
+         call status%set(STAT_INPUT, 'contact: the first increment applies no force normal to the contact '// &
+                         'surface on body A (it is displacement-driven), so the start pressure p_m of eq. (4.1) '// &
+                         'cannot be computed; give it on a CONTACT START card (PM)')
+         return
+      end if
+      st%p_start = fn/aa
+   end subroutine start_pressure
+
+   !> Contact quantities of one increment into its group `contact`.
+   subroutine write_contact_results(rf, gid, m, st, status)
+      type(results_file_t), intent(inout) :: rf
+      integer(hid_t), intent(in) :: gid
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(in) :: st
+      type(status_t), intent(inout) :: status
+      real(dp), allocatable :: area(:), pn(:), pt(:)
+      integer, allocatable :: nstate(:), tstate(:)
+      integer :: j, np
+      np = size(m%contact%pairs)
+      allocate (area(np), pn(np), pt(np), nstate(np), tstate(np))
+      area = m%contact%pairs%area
+      where (area > 0.0_dp)
+         pn = st%s%fn/area
+         pt = st%s%ft/area
+      elsewhere
+         pn = 0.0_dp
+         pt = 0.0_dp
+      end where
+      call extrapolate_zero_area(m, pn)
+      call extrapolate_zero_area(m, pt)
+      do j = 1, np
+         if (.not. st%s(j)%closed) then
+            nstate(j) = NS_OPEN
+         else if (st%s(j)%on_unloading) then
+            nstate(j) = NS_UNLOADING
+         else
+            nstate(j) = NS_LOADING
+         end if
+         tstate(j) = st%s(j)%tstate
+      end do
+      call rf%write_contact_increment(gid, pn, pt, st%s%fn, st%s%ft, st%s%un, st%s%ut, st%s%utp, &
+                                      st%s%utp_gross, st%s%ve, st%s%mu, nstate, tstate, st%s%kn, st%s%kt, status)
+   end subroutine write_contact_results
+
+   !> Pairs of zero area (a quadratic axisymmetric edge on the axis) carry no
+   !! spring; report their stress by linear extrapolation from the two
+   !! nearest pairs of the same interface (SPEC §3.2 caveat).
+   subroutine extrapolate_zero_area(m, v)
+      type(model_t), intent(in) :: m
+      real(dp), intent(inout) :: v(:)
+      integer :: j, k, k1, k2
+      real(dp) :: d, d1, d2
+      do j = 1, size(v)
+         if (m%contact%pairs(j)%area > 0.0_dp) cycle
+         k1 = 0
+         k2 = 0
+         d1 = huge(1.0_dp)
+         d2 = huge(1.0_dp)
+         do k = 1, size(v)
+            if (k == j .or. m%contact%pairs(k)%area <= 0.0_dp) cycle
+            if (m%contact%pairs(k)%iface /= m%contact%pairs(j)%iface) cycle
+            d = norm2(m%contact%pairs(k)%position - m%contact%pairs(j)%position)
+            if (d < d1) then
+               k2 = k1
+               d2 = d1
+               k1 = k
+               d1 = d
+            else if (d < d2) then
+               k2 = k
+               d2 = d
+            end if
+         end do
+         if (k1 > 0 .and. k2 > 0 .and. d2 > d1) then
+            v(j) = v(k1) + (v(k1) - v(k2))*d1/(d2 - d1)
+         else if (k1 > 0) then
+            v(j) = v(k1)
+         end if
+      end do
+   end subroutine extrapolate_zero_area
 
    !> Stresses at every Gauss point and averaged at the nodes.
    subroutine recover_stresses(m, disp, gp_start, xygp, sig_gp, sig_nd, status)
@@ -241,11 +556,9 @@ contains
       type(status_t), intent(inout) :: status
       real(dp) :: elcod(2, MAX_NODE), eldis(2*MAX_NODE), xyg(2, max_gp), sg(4, max_gp), sn(4, MAX_NODE)
       real(dp), allocatable :: cnt(:)
-      integer :: ie, nn, ngp, ierr, k, imat, pass
+      integer :: ie, nn, ngp, ierr, k, imat
 
-      pass = 2
-      if (.not. allocated(gp_start)) pass = 1
-      if (pass == 1) then
+      if (.not. allocated(gp_start)) then
          ! first call: count the Gauss points
          allocate (gp_start(m%nelem + 1))
          gp_start(1) = 1

@@ -22,17 +22,18 @@ module deck_reader
    use shape_2d, only: element_edge_nodes, nedges
    use solid2d, only: min_jacobian
    use restraint_check, only: unrestrained_bodies
+   use deck_contact, only: read_ties, read_contact
    implicit none
    private
 
    public :: read_deck, block_order
 
    !> Block keywords in their required order.
-   character(len=10), parameter :: block_order(10) = [character(len=10) :: &
+   character(len=10), parameter :: block_order(12) = [character(len=10) :: &
                                    'TITLE', 'CONTROL', 'OPTIONS', 'ELEMENTS', 'NODES', &
-                                   'RESTRAINTS', 'MATERIALS', 'LOADS', 'INCREMENTS', 'END']
-   logical, parameter :: block_required(10) = [.true., .true., .false., .true., .true., &
-                                               .true., .true., .false., .false., .true.]
+                                   'RESTRAINTS', 'TIES', 'MATERIALS', 'LOADS', 'CONTACT', 'INCREMENTS', 'END']
+   logical, parameter :: block_required(12) = [.true., .true., .false., .true., .true., &
+                                               .true., .false., .true., .false., .false., .false., .true.]
 
    !> Counts declared on the control card, needed by later blocks.
    type :: control_t
@@ -60,7 +61,8 @@ contains
       m%title = ''
       m%solver_name = 'SKYLINE'
       m%listing_level = 'SHORT'
-      allocate (m%fixes(0), m%point_loads(0), m%edge_loads(0), m%body_loads(0), m%mats(0))
+      allocate (m%fixes(0), m%point_loads(0), m%edge_loads(0), m%body_loads(0), m%mats(0), m%ties(3, 0))
+      allocate (m%contact%ifaces(0), m%contact%pairs(0))
       if (.not. loaded) then
          errors = d%errors
          return
@@ -80,8 +82,8 @@ contains
          iblk = block_index(kw)
          if (.not. d%is_keyword_card(ic) .or. iblk == 0) then
             call d%error_at(ic, 1, 'E-BLOCK', 'expected a block keyword ('// &
-                            'TITLE, CONTROL, OPTIONS, ELEMENTS, NODES, RESTRAINTS, MATERIALS, '// &
-                            'LOADS, INCREMENTS or END), found "'//trim(d%cards(ic)%text)//'"')
+                            'TITLE, CONTROL, OPTIONS, ELEMENTS, NODES, RESTRAINTS, TIES, MATERIALS, '// &
+                            'LOADS, CONTACT, INCREMENTS or END), found "'//trim(d%cards(ic)%text)//'"')
             call skip_to_block(d)
             cycle
          end if
@@ -93,7 +95,7 @@ contains
          if (iblk < last) then
             call d%error_at(ic, 1, 'E-ORDER', 'block '//trim(kw)//' is out of order: it must come before '// &
                             trim(block_order(last))//' (order: TITLE, CONTROL, OPTIONS, ELEMENTS, '// &
-                            'NODES, RESTRAINTS, MATERIALS, LOADS, INCREMENTS, END)')
+                            'NODES, RESTRAINTS, TIES, MATERIALS, LOADS, CONTACT, INCREMENTS, END)')
             call skip_to_block(d)
             cycle
          end if
@@ -130,6 +132,19 @@ contains
             restraint_line = d%cards(ic)%line
             if (ctl%ok) then
                call read_restraints(d, ic, m, ctl)
+            else
+               call skip_to_block(d)
+            end if
+         case ('TIES')
+            if (ctl%ok .and. allocated(m%coord)) then
+               call read_ties(d, m, is_block_card)
+            else
+               call skip_to_block(d)
+            end if
+         case ('CONTACT')
+            if (ctl%ok .and. allocated(m%coord) .and. allocated(m%lnods) .and. allocated(m%mats) .and. &
+                d%errors%n == 0) then
+               call read_contact(d, ic, m, warnings, is_block_card)
             else
                call skip_to_block(d)
             end if
@@ -217,8 +232,8 @@ contains
          if (d%is_keyword_card(ic)) then
             ! an unknown keyword: report it once and skip its cards
             call d%error_at(ic, 1, 'E-BLOCK', card//': expected '//expected// &
-                            ' or a block keyword (TITLE, CONTROL, OPTIONS, ELEMENTS, NODES, RESTRAINTS, '// &
-                            'MATERIALS, LOADS, INCREMENTS, END), found "'//trim(d%cards(ic)%text)//'"')
+                            ' or a block keyword (TITLE, CONTROL, OPTIONS, ELEMENTS, NODES, RESTRAINTS, TIES, '// &
+                            'MATERIALS, LOADS, CONTACT, INCREMENTS, END), found "'//trim(d%cards(ic)%text)//'"')
             call skip_to_block(d)
             ic = 0
             return
@@ -989,7 +1004,14 @@ contains
       end do
       if (d%errors%n > 0) return
 
-      allocate (nolinks(2, 0))
+      ! bodies joined by ties or contact pairs are checked together
+      allocate (nolinks(2, size(m%ties, 2) + size(m%contact%pairs)))
+      do k = 1, size(m%ties, 2)
+         nolinks(:, k) = m%ties(1:2, k)
+      end do
+      do k = 1, size(m%contact%pairs)
+         nolinks(:, size(m%ties, 2) + k) = [m%contact%pairs(k)%node_a, m%contact%pairs(k)%node_b]
+      end do
       call unrestrained_bodies(m, nolinks, nbad, bad_node, what)
       do k = 1, nbad
          call d%errors%add('E-UNRESTRAINED', 'RESTRAINTS: unrestrained model: the body containing node '// &

@@ -10,9 +10,11 @@ module listing
    use kinds, only: dp, pi
    use strings, only: itoa
    use model, only: model_t, ntype_name
+   use contact_types, only: contact_def_t
+   use contact_algorithm, only: contact_state_t, TS_STICK, TS_PLASTIC, TS_SLIP
    implicit none
    private
-   public :: list_header, list_input, list_displacements, list_stresses, principal_stresses
+   public :: list_header, list_input, list_displacements, list_stresses, principal_stresses, list_contact
 
 contains
 
@@ -136,6 +138,52 @@ contains
          end do
       end do
    end subroutine list_stresses
+
+   !> Contact table of one increment: one line per pair.
+   subroutine list_contact(u, c, st, iterations, repeats, residual, drift)
+      integer, intent(in) :: u
+      type(contact_def_t), intent(in) :: c
+      type(contact_state_t), intent(in) :: st
+      integer, intent(in) :: iterations, repeats
+      real(dp), intent(in) :: residual, drift
+      integer :: j
+      character(len=5) :: ns, ts
+      real(dp) :: pn, pt
+      write (u, '(/a)') ' CONTACT PAIRS'
+      write (u, '(a,i0,a,i0,a,es10.3,a,es10.3)') '   solutions: ', iterations, '   repeats: ', repeats, &
+         '   out-of-balance: ', residual, '   normal-law drift: ', drift
+      write (u, '(a)') '   PAIR  NODE-A  NODE-B     X-COORD     Y-COORD        AREA    PRESSURE       SHEAR'// &
+         '     CLOSURE        SLIP  SLIP-IRREV    MU  NORM  TANG'
+      do j = 1, size(c%pairs)
+         associate (p => c%pairs(j), s => st%s(j))
+            if (.not. s%closed) then
+               ns = 'open'
+            else if (s%on_unloading) then
+               ns = 'unld'
+            else
+               ns = 'load'
+            end if
+            select case (s%tstate)
+            case (TS_STICK)
+               ts = 'stick'
+            case (TS_PLASTIC)
+               ts = 'plast'
+            case (TS_SLIP)
+               ts = 'slip'
+            end select
+            if (.not. s%closed) ts = '-'
+            pn = 0.0_dp
+            pt = 0.0_dp
+            if (p%area > 0.0_dp) then
+               pn = s%fn/p%area
+               pt = s%ft/p%area
+            end if
+            write (u, '(i7, 2i8, 8es12.4, f6.3, 2(1x,a5))') j, p%node_a, p%node_b, p%position, p%area, pn, pt, &
+               s%un, s%ut, s%utp, s%mu, ns, ts
+         end associate
+      end do
+      write (u, '(a,es14.6,a,es14.6)') '   sum of normal forces:', sum(st%s%fn), '   of tangential forces:', sum(st%s%ft)
+   end subroutine list_contact
 
    !> In-plane principal stresses and the angle (degrees) of the first from x.
    pure subroutine principal_stresses(sig, s1, s2, angle)

@@ -28,6 +28,7 @@ module results_hdf5
    use errors, only: status_t, STAT_IO
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
+   use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name
    implicit none
    private
    public :: results_file_t, K2D_VERSION
@@ -45,8 +46,10 @@ module results_hdf5
       procedure :: close_increment => results_close_increment
       procedure :: set_status => results_set_status
       procedure :: close => results_close
+      procedure :: write_contact_definition => results_contact_definition
+      procedure, nopass :: write_contact_increment => results_contact_increment
       procedure, nopass :: write_real1, write_real2, write_int1, write_int2
-      procedure, nopass :: attr_int, attr_real1, attr_string
+      procedure, nopass :: attr_int, attr_real0, attr_real1, attr_string
    end type results_file_t
 
    logical, save :: library_open = .false.
@@ -178,6 +181,97 @@ contains
       this%is_open = .false.
    end subroutine results_close
 
+   !> /contact: the pairs and the interface laws (written once).
+   subroutine results_contact_definition(this, c, status)
+      class(results_file_t), intent(inout) :: this
+      type(contact_def_t), intent(in) :: c
+      type(status_t), intent(inout) :: status
+      integer(hid_t) :: gid, iid
+      integer :: err, np, i, e
+      real(dp), allocatable :: v2(:, :)
+      character(len=16) :: name
+      err = 0
+      np = size(c%pairs)
+      call h5gcreate_f(this%fid, 'contact', gid, e)
+      if (e < 0) then
+         call status%set(STAT_IO, 'HDF5: cannot create group /contact in '//this%path)
+         return
+      end if
+      call write_int1(gid, 'node_a', c%pairs%node_a, err)
+      call write_int1(gid, 'node_b', c%pairs%node_b, err)
+      call write_int1(gid, 'interface', c%pairs%iface, err)
+      allocate (v2(2, np))
+      do i = 1, np
+         v2(:, i) = c%pairs(i)%position
+      end do
+      call write_real2(gid, 'position', v2, err)
+      do i = 1, np
+         v2(:, i) = c%pairs(i)%n
+      end do
+      call write_real2(gid, 'normal', v2, err)
+      do i = 1, np
+         v2(:, i) = c%pairs(i)%t
+      end do
+      call write_real2(gid, 'tangent', v2, err)
+      call write_real1(gid, 'gap', c%pairs%g0, err)
+      call write_real1(gid, 'area', c%pairs%area, err)
+      call attr_string(gid, 'update', update_name(c%opts%update), err)
+      call attr_int(gid, 'max_repeats', c%opts%max_repeats, err)
+      do i = 1, size(c%ifaces)
+         write (name, '(a,i0)') 'interface_', i
+         call h5gcreate_f(gid, trim(name), iid, e)
+         if (e < 0) err = e
+         associate (f => c%ifaces(i))
+            call attr_string(iid, 'law', merge('ROUGH', 'IDEAL', f%law == 1), err)
+            call attr_string(iid, 'units', units_name(f%units), err)
+            call attr_real1(iid, 'normal_input', [f%cn_in, f%m_in, f%cn2_in, f%m2_in], err)
+            call attr_real1(iid, 'normal_model', [f%cn, f%m, f%cn2, f%m2], err)
+            call attr_real1(iid, 'tangent_s', [f%s], err)
+            call attr_string(iid, 'friction', friction_name(f%friction), err)
+            call attr_real1(iid, 'friction_parameters', [f%mu_m, f%beta, f%n_hard], err)
+            call attr_int(iid, 'hardening', merge(1, 0, f%hardening), err)
+            call attr_real1(iid, 'kappa', [f%kappa], err)
+            call attr_string(iid, 'effective_slip', slip_name(f%slip_def), err)
+            if (allocated(f%r_t)) call write_real1(iid, 'r_model', f%r_t, err)
+         end associate
+         call h5gclose_f(iid, e)
+      end do
+      call h5gclose_f(gid, e)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write /contact in '//this%path)
+   end subroutine results_contact_definition
+
+   !> Group `contact` of an increment: per-pair quantities (see docs/results-format.md).
+   subroutine results_contact_increment(gid, pn, pt, fn, ft, un, ut, utp, utg, ve, mu, nstate, tstate, kn, kt, status)
+      integer(hid_t), intent(in) :: gid
+      real(dp), intent(in) :: pn(:), pt(:), fn(:), ft(:), un(:), ut(:), utp(:), utg(:), ve(:), mu(:), kn(:), kt(:)
+      integer, intent(in) :: nstate(:), tstate(:)
+      type(status_t), intent(inout) :: status
+      integer(hid_t) :: cid
+      integer :: err, e
+      err = 0
+      call h5gcreate_f(gid, 'contact', cid, e)
+      if (e < 0) then
+         call status%set(STAT_IO, 'HDF5: cannot create a contact group')
+         return
+      end if
+      call write_real1(cid, 'pressure', pn, err)
+      call write_real1(cid, 'shear', pt, err)
+      call write_real1(cid, 'force_normal', fn, err)
+      call write_real1(cid, 'force_tangential', ft, err)
+      call write_real1(cid, 'closure', un, err)
+      call write_real1(cid, 'slip', ut, err)
+      call write_real1(cid, 'slip_irreversible', utp, err)
+      call write_real1(cid, 'slip_gross', utg, err)
+      call write_real1(cid, 'effective_slip', ve, err)
+      call write_real1(cid, 'friction', mu, err)
+      call write_int1(cid, 'normal_state', nstate, err)
+      call write_int1(cid, 'tangential_state', tstate, err)
+      call write_real1(cid, 'stiffness_normal', kn, err)
+      call write_real1(cid, 'stiffness_tangential', kt, err)
+      call h5gclose_f(cid, e)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the contact results')
+   end subroutine results_contact_increment
+
    ! ------------------------------------------------------------------ helpers
    ! Each helper leaves err < 0 if any HDF5 call failed (errors accumulate).
 
@@ -284,6 +378,14 @@ contains
       end if
       call h5sclose_f(sid, e)
    end subroutine attr_int
+
+   subroutine attr_real0(loc, name, v, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: v
+      integer, intent(inout) :: err
+      call attr_real1(loc, name, [v], err)
+   end subroutine attr_real0
 
    subroutine attr_real1(loc, name, v, err)
       integer(hid_t), intent(in) :: loc

@@ -8,6 +8,7 @@
 !!   gives, for every increment, the total factor of every case.
 module model
    use kinds, only: dp
+   use contact_types, only: contact_def_t
    implicit none
    private
 
@@ -106,6 +107,10 @@ module model
       ! load history: lambda(icase, i) is the total factor of case icase after increment i
       integer :: nincs = 0
       real(dp), allocatable :: lambda(:, :)  !! (ncase, 0:nincs)
+      ! ties: (3, ntie) master node, slave node, dof (1 x, 2 y); slaves share the master's equation
+      integer, allocatable :: ties(:, :)
+      ! contact interfaces and pairs
+      type(contact_def_t) :: contact
       ! named sets (from gmsh physical groups or the deck)
       type(node_set_t), allocatable :: node_sets(:)
       type(edge_set_t), allocatable :: edge_sets(:)

@@ -1,0 +1,460 @@
+!> State determination of the contact springs: the paper's incremental
+!! algorithm (section 4; SPEC §4) with the options of SPEC §4.5.
+!!
+!! Every pair carries a committed state (end of the last increment) and, within
+!! an increment, a *mode*: open or closed, virgin or unloading branch, and the
+!! tangential state stick / plastic (hardening branch) / slip, with the spring
+!! stiffnesses used for the solve.  After each solve `evaluate_pairs` computes
+!! the pair forces for the displacement increment from the start of the
+!! increment, checks the modes in the order of SPEC §4.3 (open/closed,
+!! loading/unloading, tangential), and flags changes; the driver then repeats
+!! the increment with the new stiffnesses ("die neue FE-Analyse wird fuer das
+!! gegebene Lastinkrement wiederholt").  Force updates:
+!!
+!! * EXPLICIT (the paper, eqs. 4.9-4.14, SPEC D7): F = F_prev + K dU, with K
+!!   from the previous increment (secant from the start pressure p_m in the
+!!   first increment, eqs. 4.1-4.6; tangent eq. 4.10 afterwards);
+!! * RETURN: the normal force is returned to the curve, F_n = A p(u_n), and
+!!   the increment is repeated with the current tangent until the
+!!   out-of-balance force vanishes (equilibrium on the curve).
+!!
+!! Slip (eq. 4.16, 4.18) uses the return-to-cone form of SPEC §4.3: F_T =
+!! s mu F_n with K_T = 0, s the sign of the elastic trial force.  The friction
+!! coefficient of increment i comes from the effective slip after increment
+!! i-1 (explicit, SPEC §2.3).
+module contact_algorithm
+   use kinds, only: dp
+   use contact_types, only: contact_def_t, interface_t, LAW_ROUGH, FRICTION_NONE, UPDATE_RETURN, &
+                            SLIP_GROSS
+   use contact_laws, only: virgin_pressure, virgin_tangent, unloading_tangent, residual_closure, &
+                           normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient
+   use contact_element, only: spring_stiffness, spring_kinematics, spring_forces
+   implicit none
+   private
+
+   public :: pair_state_t, pair_mode_t, contact_state_t
+   public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
+             pair_force_vector, law_drift
+   public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
+
+   integer, parameter :: NS_OPEN = 0, NS_LOADING = 1, NS_UNLOADING = 2
+   integer, parameter :: TS_STICK = 0, TS_PLASTIC = 1, TS_SLIP = 2
+   integer, parameter :: MAX_SWITCH = 6   !! mode changes of one pair within one increment
+
+   !> Committed state of one pair (end of an increment).
+   type :: pair_state_t
+      logical :: closed = .false.
+      logical :: on_unloading = .false.   !! on the unloading/reloading branch through A
+      real(dp) :: ua = 0.0_dp, pa = 0.0_dp  !! reversal point A (closure, pressure)
+      real(dp) :: un = 0.0_dp             !! total closure (u_b - u_a).n - g0
+      real(dp) :: ut = 0.0_dp             !! total tangential displacement (u_a - u_b).t
+      real(dp) :: fn = 0.0_dp, ft = 0.0_dp  !! spring forces
+      real(dp) :: utp = 0.0_dp            !! irreversible tangential displacement (SPEC §2.3 a)
+      real(dp) :: utp_gross = 0.0_dp      !! gross-slip part only (SPEC §2.3 b)
+      real(dp) :: ve = 0.0_dp             !! effective slip, path length of the chosen definition
+      integer :: tstate = TS_STICK
+      real(dp) :: mu = 0.0_dp             !! friction coefficient used in the increment
+      real(dp) :: kn = 0.0_dp, kt = 0.0_dp  !! spring stiffnesses of the increment
+   end type pair_state_t
+
+   !> The assumption for one pair within an increment.
+   type :: pair_mode_t
+      logical :: closed = .false.
+      logical :: newly_closed = .false.
+      logical :: on_unloading = .false.
+      real(dp) :: ua = 0.0_dp, pa = 0.0_dp
+      integer :: tstate = TS_STICK
+      real(dp) :: kn = 0.0_dp             !! normal spring stiffness for the solve
+      real(dp) :: kte = 0.0_dp            !! elastic tangential spring stiffness of the increment
+      real(dp) :: kt = 0.0_dp             !! tangential spring stiffness for the solve
+      real(dp) :: uthr = 0.0_dp           !! closure at which the pair (re)closes
+      real(dp) :: mu = 0.0_dp
+      integer :: nswitch = 0
+   end type pair_mode_t
+
+   type :: contact_state_t
+      type(pair_state_t), allocatable :: s(:)     !! committed
+      type(pair_mode_t), allocatable :: md(:)     !! current modes
+      real(dp), allocatable :: fn(:), ft(:)       !! current forces
+      real(dp), allocatable :: dun(:), dut(:)     !! current increments of closure and slip
+      real(dp) :: p_start = 0.0_dp                !! p_m of eq. (4.1)
+      logical :: chatter = .false.                !! a pair exhausted its mode changes
+   end type contact_state_t
+
+contains
+
+   !> Initial states: closure -g0; closed if the gap is within tolerance (or
+   !! among the n_start smallest gaps).
+   subroutine contact_init(cdef, gap_tol, st)
+      type(contact_def_t), intent(in) :: cdef
+      real(dp), intent(in) :: gap_tol
+      type(contact_state_t), intent(out) :: st
+      integer :: np, j, k, nclose
+      integer :: order(size(cdef%pairs))
+      real(dp) :: g(size(cdef%pairs))
+      np = size(cdef%pairs)
+      allocate (st%s(np), st%md(np), st%fn(np), st%ft(np), st%dun(np), st%dut(np))
+      st%fn = 0.0_dp
+      st%ft = 0.0_dp
+      st%dun = 0.0_dp
+      st%dut = 0.0_dp
+      do j = 1, np
+         st%s(j)%un = -cdef%pairs(j)%g0
+         st%s(j)%closed = cdef%pairs(j)%g0 <= gap_tol .and. cdef%pairs(j)%area > 0.0_dp
+         st%s(j)%mu = friction_coefficient(cdef%ifaces(cdef%pairs(j)%iface), 0.0_dp)
+      end do
+      if (cdef%opts%n_start > 0) then
+         ! the n_start pairs of smallest gap start closed (paper, example 5.2)
+         g = cdef%pairs%g0
+         order = [(j, j=1, np)]
+         do j = 2, np
+            k = j
+            do while (k > 1)
+               if (g(order(k - 1)) <= g(order(k))) exit
+               order(k - 1:k) = order(k:k - 1:-1)
+               k = k - 1
+            end do
+         end do
+         nclose = 0
+         st%s%closed = .false.
+         do k = 1, np
+            if (nclose >= cdef%opts%n_start) exit
+            if (cdef%pairs(order(k))%area <= 0.0_dp) cycle
+            st%s(order(k))%closed = .true.
+            nclose = nclose + 1
+         end do
+      end if
+   end subroutine contact_init
+
+   !> Modes and stiffnesses for the next increment from the committed states.
+   !! In the first increment closed pairs get the secants of eqs. (4.5), (4.6)
+   !! at the start pressure p_m; later the tangents of eqs. (4.10), (4.11).
+   pure subroutine begin_increment(cdef, st, first)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      logical, intent(in) :: first
+      integer :: j
+      real(dp) :: p, pfloor
+      pfloor = cdef%opts%p_min_ratio*st%p_start
+      do j = 1, size(st%s)
+         associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            md = pair_mode_t()
+            md%closed = s%closed
+            md%on_unloading = s%on_unloading
+            md%ua = s%ua
+            md%pa = s%pa
+            md%tstate = s%tstate
+            md%mu = friction_coefficient(ifc, s%ve)
+            md%uthr = reclose_threshold(ifc, s%on_unloading, s%ua, s%pa)
+            if (.not. s%closed .or. pr%area <= 0.0_dp) then
+               md%closed = .false.
+               md%tstate = TS_STICK
+               cycle
+            end if
+            if (first) then
+               md%kn = pr%area*st%p_start**(1.0_dp - ifc%m)/ifc%cn
+               p = st%p_start
+            else
+               p = max(s%fn/pr%area, pfloor)
+               if (s%on_unloading) then
+                  md%kn = pr%area*unloading_tangent(p, ifc%cn2, ifc%m2)
+               else
+                  md%kn = pr%area*virgin_tangent(p, ifc%cn, ifc%m)
+               end if
+            end if
+            md%kte = pr%area*tangential_stiffness(p, ifc%s, ifc%r_t(local_index(cdef, j)))
+            call set_kt(ifc, md)
+         end associate
+      end do
+   end subroutine begin_increment
+
+   !> Closure at which an open pair closes: 0, or the residual closure after unloading.
+   pure real(dp) function reclose_threshold(ifc, on_unloading, ua, pa) result(u)
+      type(interface_t), intent(in) :: ifc
+      logical, intent(in) :: on_unloading
+      real(dp), intent(in) :: ua, pa
+      u = 0.0_dp
+      if (on_unloading) u = max(residual_closure(ua, pa, ifc%cn2, ifc%m2), 0.0_dp)
+   end function reclose_threshold
+
+   !> Position of pair j among the pairs of its interface (for per-pair R).
+   pure integer function local_index(cdef, j) result(k)
+      type(contact_def_t), intent(in) :: cdef
+      integer, intent(in) :: j
+      integer :: i
+      k = 0
+      do i = 1, j
+         if (cdef%pairs(i)%iface == cdef%pairs(j)%iface) k = k + 1
+      end do
+   end function local_index
+
+   !> Tangential spring stiffness of a mode: K_T^e, kappa K_T^e or 0 (eq. 4.17).
+   pure subroutine set_kt(ifc, md)
+      type(interface_t), intent(in) :: ifc
+      type(pair_mode_t), intent(inout) :: md
+      if (ifc%friction == FRICTION_NONE .or. .not. md%closed) then
+         md%kt = 0.0_dp
+         return
+      end if
+      select case (md%tstate)
+      case (TS_STICK)
+         md%kt = md%kte
+      case (TS_PLASTIC)
+         md%kt = ifc%kappa*md%kte
+      case default
+         md%kt = 0.0_dp
+      end select
+   end subroutine set_kt
+
+   !> Global 4x4 matrix of pair j in its current mode.
+   pure subroutine pair_matrix(cdef, st, j, ke)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(in) :: st
+      integer, intent(in) :: j
+      real(dp), intent(out) :: ke(4, 4)
+      call spring_stiffness(cdef%pairs(j)%t, cdef%pairs(j)%n, st%md(j)%kt, st%md(j)%kn, ke)
+   end subroutine pair_matrix
+
+   !> Internal-force vector (r_a, r_b) of pair j for forces fn, ft.
+   pure subroutine pair_force_vector(cdef, j, fn, ft, r)
+      type(contact_def_t), intent(in) :: cdef
+      integer, intent(in) :: j
+      real(dp), intent(in) :: fn, ft
+      real(dp), intent(out) :: r(4)
+      call spring_forces(cdef%pairs(j)%t, cdef%pairs(j)%n, fn, ft, r)
+   end subroutine pair_force_vector
+
+   !> Forces of every pair for the displacement increment du (from the start of
+   !! the increment), with the mode checks of SPEC §4.3.  `changed(j)` tells
+   !! that pair j changed its mode (the increment must be repeated).
+   pure subroutine evaluate_pairs(cdef, st, du, changed, first)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      real(dp), intent(in) :: du(:, :)          !! (2, npoin) displacement increments
+      logical, intent(out) :: changed(:)
+      logical, intent(in) :: first              !! first increment (secant iteration option)
+      integer :: j
+      real(dp) :: dun, dut, u, fn, ft, p, pfloor, trial, limit, pold
+      logical :: returning, may_switch
+
+      returning = cdef%opts%update == UPDATE_RETURN
+      pfloor = cdef%opts%p_min_ratio*st%p_start
+      changed = .false.
+      do j = 1, size(st%s)
+         associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            call spring_kinematics(pr%t, pr%n, du(:, pr%node_a), du(:, pr%node_b), dun, dut)
+            st%dun(j) = dun
+            st%dut(j) = dut
+            u = s%un + dun
+            may_switch = md%nswitch < MAX_SWITCH
+            fn = 0.0_dp
+            ft = 0.0_dp
+            if (pr%area <= 0.0_dp) then
+               st%fn(j) = 0.0_dp
+               st%ft(j) = 0.0_dp
+               cycle
+            end if
+
+            ! 1. open / closed (SPEC D5)
+            if (.not. md%closed) then
+               if (u > md%uthr .and. may_switch) then
+                  md%closed = .true.
+                  md%newly_closed = .true.
+                  p = max(normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa), pfloor)
+                  md%kn = pr%area*p/max(u - md%uthr, tiny(1.0_dp))
+                  md%kte = pr%area*tangential_stiffness(p, ifc%s, ifc%r_t(local_index(cdef, j)))
+                  md%tstate = TS_STICK
+                  call set_kt(ifc, md)
+                  call flag(changed(j), md%nswitch, st%chatter)
+               end if
+            end if
+            if (md%closed) then
+               if (returning) then
+                  fn = pr%area*normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa)
+               else if (md%newly_closed) then
+                  fn = md%kn*(u - md%uthr)
+               else
+                  fn = s%fn + md%kn*dun
+               end if
+               if ((fn < 0.0_dp .or. u <= md%uthr) .and. may_switch) then
+                  md%closed = .false.
+                  md%newly_closed = .false.
+                  md%kn = 0.0_dp
+                  md%tstate = TS_STICK
+                  call set_kt(ifc, md)
+                  fn = 0.0_dp
+                  call flag(changed(j), md%nswitch, st%chatter)
+               end if
+            end if
+
+            ! 2. loading / unloading (SPEC §2.1): reversal starts the unloading branch at A
+            if (md%closed .and. s%closed .and. .not. md%newly_closed .and. .not. md%on_unloading .and. &
+                dun < 0.0_dp .and. may_switch) then
+               md%on_unloading = .true.
+               md%ua = s%un
+               md%pa = s%fn/pr%area
+               md%uthr = reclose_threshold(ifc, .true., md%ua, md%pa)
+               if (.not. returning) then
+                  md%kn = pr%area*unloading_tangent(max(md%pa, pfloor), ifc%cn2, ifc%m2)
+                  fn = s%fn + md%kn*dun
+                  if (fn < 0.0_dp .or. u <= md%uthr) then
+                     md%closed = .false.
+                     md%kn = 0.0_dp
+                     md%tstate = TS_STICK
+                     call set_kt(ifc, md)
+                     fn = 0.0_dp
+                  end if
+               else
+                  fn = pr%area*normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, .true., md%ua, md%pa)
+               end if
+               call flag(changed(j), md%nswitch, st%chatter)
+            end if
+
+            ! optional secant iteration of the first increment (SPEC §4.1)
+            if (first .and. cdef%opts%first_iterate .and. md%closed .and. .not. returning .and. &
+                .not. md%newly_closed .and. fn > 0.0_dp .and. may_switch) then
+               pold = md%kn
+               md%kn = pr%area*(fn/pr%area)**(1.0_dp - ifc%m)/ifc%cn
+               if (abs(md%kn - pold) > 1.0e-10_dp*pold) then
+                  fn = s%fn + md%kn*dun
+                  call flag(changed(j), md%nswitch, st%chatter)
+               end if
+            end if
+
+            ! Newton tangent for the next solve of a RETURN update
+            if (returning .and. md%closed) then
+               md%kn = max(pr%area*normal_tangent(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa), &
+                           pr%area*virgin_tangent(pfloor, ifc%cn, ifc%m), &
+                           fn/max(u - md%uthr, tiny(1.0_dp))*1.0e-3_dp)
+            end if
+
+            ! 3. tangential (SPEC §4.3 item 3 and 4)
+            if (md%closed .and. ifc%friction /= FRICTION_NONE) then
+               limit = md%mu*fn
+               select case (md%tstate)
+               case (TS_STICK)
+                  ft = merge(0.0_dp, s%ft, md%newly_closed) + md%kte*dut
+                  if (ifc%hardening .and. abs(ft) >= 0.625_dp*limit .and. abs(ft) < limit .and. may_switch) then
+                     md%tstate = TS_PLASTIC
+                     call set_kt(ifc, md)
+                     ft = s%ft + md%kt*dut
+                     call flag(changed(j), md%nswitch, st%chatter)
+                  end if
+                  if (abs(ft) >= limit .and. may_switch) then
+                     md%tstate = TS_SLIP
+                     call set_kt(ifc, md)
+                     ft = sign(limit, ft)
+                     call flag(changed(j), md%nswitch, st%chatter)
+                  end if
+               case (TS_PLASTIC)
+                  ft = s%ft + md%kt*dut
+                  if (dut*s%ft < 0.0_dp .and. may_switch) then
+                     md%tstate = TS_STICK       ! unloading along k_T^e (Bild 2, BC)
+                     call set_kt(ifc, md)
+                     ft = s%ft + md%kt*dut
+                     call flag(changed(j), md%nswitch, st%chatter)
+                  else if (abs(ft) >= limit .and. may_switch) then
+                     md%tstate = TS_SLIP
+                     call set_kt(ifc, md)
+                     ft = sign(limit, ft)
+                     call flag(changed(j), md%nswitch, st%chatter)
+                  end if
+               case default
+                  trial = merge(0.0_dp, s%ft, md%newly_closed) + md%kte*dut
+                  if (abs(trial) < limit*(1.0_dp - 1.0e-12_dp) .and. may_switch) then
+                     md%tstate = TS_STICK       ! back inside the cone: stick again
+                     call set_kt(ifc, md)
+                     ft = trial
+                     call flag(changed(j), md%nswitch, st%chatter)
+                  else
+                     ft = sign(limit, trial)
+                  end if
+               end select
+            end if
+            st%fn(j) = fn
+            st%ft(j) = ft
+         end associate
+      end do
+   end subroutine evaluate_pairs
+
+   !> Record a mode change of one pair.
+   pure subroutine flag(changed, nswitch, chatter)
+      logical, intent(inout) :: changed, chatter
+      integer, intent(inout) :: nswitch
+      changed = .true.
+      nswitch = nswitch + 1
+      if (nswitch >= MAX_SWITCH) chatter = .true.
+   end subroutine flag
+
+   !> Commit the increment: totals, branch, irreversible slip, effective slip.
+   pure subroutine commit_increment(cdef, st)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      integer :: j
+      real(dp) :: dutp, ft_old
+      do j = 1, size(st%s)
+         associate (s => st%s(j), md => st%md(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            ft_old = s%ft
+            s%un = s%un + st%dun(j)
+            s%ut = s%ut + st%dut(j)
+            s%mu = md%mu
+            s%kn = md%kn
+            s%kt = md%kt
+            if (md%closed) then
+               s%closed = .true.
+               s%fn = st%fn(j)
+               s%ft = st%ft(j)
+               s%on_unloading = md%on_unloading
+               s%ua = md%ua
+               s%pa = md%pa
+               ! reloading past the reversal point: back on the virgin curve
+               if (s%on_unloading .and. s%un >= s%ua) s%on_unloading = .false.
+               ! irreversible tangential displacement: all but the elastic part (SPEC §2.3)
+               dutp = 0.0_dp
+               if (ifc%friction /= FRICTION_NONE .and. md%tstate /= TS_STICK .and. md%kte > 0.0_dp) then
+                  dutp = st%dut(j) - (s%ft - merge(0.0_dp, ft_old, md%newly_closed))/md%kte
+               end if
+               s%utp = s%utp + dutp
+               if (md%tstate == TS_SLIP) s%utp_gross = s%utp_gross + dutp
+               if (ifc%slip_def == SLIP_GROSS) then
+                  if (md%tstate == TS_SLIP) s%ve = s%ve + abs(dutp)
+               else
+                  s%ve = s%ve + abs(dutp)
+               end if
+               s%tstate = md%tstate
+            else
+               s%closed = .false.
+               s%fn = 0.0_dp
+               s%ft = 0.0_dp
+               s%tstate = TS_STICK
+               s%on_unloading = md%on_unloading
+               s%ua = md%ua
+               s%pa = md%pa
+            end if
+         end associate
+      end do
+   end subroutine commit_increment
+
+   !> Largest departure of a closed pair's normal force from its curve,
+   !! |F_n - A p(u_n)| / max F_n: the drift of the explicit scheme (SPEC §4.2).
+   pure real(dp) function law_drift(cdef, st) result(drift)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(in) :: st
+      integer :: j
+      real(dp) :: fmax, f
+      drift = 0.0_dp
+      fmax = 0.0_dp
+      do j = 1, size(st%s)
+         if (.not. st%s(j)%closed) cycle
+         fmax = max(fmax, st%s(j)%fn)
+      end do
+      if (fmax <= 0.0_dp) return
+      do j = 1, size(st%s)
+         associate (s => st%s(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            if (.not. s%closed .or. ifc%law /= LAW_ROUGH) cycle
+            f = pr%area*normal_pressure(s%un, ifc%cn, ifc%m, ifc%cn2, ifc%m2, s%on_unloading, s%ua, s%pa)
+            drift = max(drift, abs(s%fn - f)/fmax)
+         end associate
+      end do
+   end function law_drift
+end module contact_algorithm

@@ -1,0 +1,158 @@
+!> The interface laws of the rough contact layer, as pure functions of state.
+!!
+!! Normal direction (SPEC §2.1): virgin loading u = cn p^m (eq. 2.1a) with
+!! tangent stiffness per unit area k_n = p^(1-m) / (cn m) (corrected eq. 3.27,
+!! SPEC D4); unloading from the reversal point A = (u_A, p_A) along
+!! u = u_A - cn2 (p_A^m2 - p^m2) (SPEC D8), reloading back along it to A and
+!! then on the virgin curve.  Tangential direction (SPEC §2.2): elastic
+!! stiffness k_T^e = p_n^S / R (eq. 2.7).  Friction (SPEC §2.3, D1):
+!! mu(v_e) = mu_m [1 - (1 - beta) exp(-n v_e)].  Units: model units, after
+!! `convert_interface` (SPEC §2.4).
+!!
+!! No law knows about matrices; the spring element and the algorithm call these.
+module contact_laws
+   use kinds, only: dp
+   use contact_types, only: interface_t, UNITS_KGF_UM, UNITS_N_UM, &
+                            FRICTION_NONE, FRICTION_FREDRIKSSON, KGF_PER_NMM2
+   implicit none
+   private
+   public :: convert_interface, r_literature, virgin_pressure, virgin_closure, virgin_tangent, &
+             unloading_pressure, unloading_tangent, residual_closure, normal_pressure, &
+             normal_tangent, tangential_stiffness, friction_coefficient
+
+contains
+
+   !> R of eq. (2.8), R = 2 cn m (1 + nu), in the units of the given cn (Back et al. 1973).
+   elemental real(dp) function r_literature(cn, m, nu) result(r)
+      real(dp), intent(in) :: cn, m, nu
+      r = 2.0_dp*cn*m*(1.0_dp + nu)
+   end function r_literature
+
+   !> Model-unit constants of an interface from its input values (SPEC §2.4):
+   !!     kgf-µm: cn = 1e-3 cn_in f^m,  R = 1e-3 R_in f^(1-S),  f = 10.19716 kgf/cm² per N/mm²
+   !!     N-µm:   cn = 1e-3 cn_in,      R = 1e-3 R_in
+   !! `nu(j)` is the Poisson ratio at pair j of the interface, used when R is
+   !! computed from eq. (2.8).  Requires a model in mm and N/mm² unless units = MODEL.
+   pure subroutine convert_interface(ifc, nu)
+      type(interface_t), intent(inout) :: ifc
+      real(dp), intent(in) :: nu(:)
+      real(dp) :: f, lscale
+      real(dp) :: r_in(size(nu))
+
+      if (.not. ifc%s_given) ifc%s_in = 1.0_dp - ifc%m_in
+      if (ifc%r_given) then
+         r_in = ifc%r_in
+      else
+         r_in = r_literature(ifc%cn_in, ifc%m_in, nu)
+      end if
+      select case (ifc%units)
+      case (UNITS_KGF_UM)
+         f = KGF_PER_NMM2
+         lscale = 1.0e-3_dp
+      case (UNITS_N_UM)
+         f = 1.0_dp
+         lscale = 1.0e-3_dp
+      case default
+         f = 1.0_dp
+         lscale = 1.0_dp
+      end select
+      ifc%m = ifc%m_in
+      ifc%m2 = ifc%m2_in
+      ifc%s = ifc%s_in
+      ifc%cn = lscale*ifc%cn_in*f**ifc%m_in
+      ifc%cn2 = lscale*ifc%cn2_in*f**ifc%m2_in
+      ifc%r_t = lscale*r_in*f**(1.0_dp - ifc%s_in)
+   end subroutine convert_interface
+
+   !> Pressure on the virgin curve at closure u (zero for u <= 0), inverse of (2.1a).
+   elemental real(dp) function virgin_pressure(u, cn, m) result(p)
+      real(dp), intent(in) :: u, cn, m
+      if (u <= 0.0_dp) then
+         p = 0.0_dp
+      else
+         p = (u/cn)**(1.0_dp/m)
+      end if
+   end function virgin_pressure
+
+   !> Closure on the virgin curve at pressure p, eq. (2.1a).
+   elemental real(dp) function virgin_closure(p, cn, m) result(u)
+      real(dp), intent(in) :: p, cn, m
+      u = cn*max(p, 0.0_dp)**m
+   end function virgin_closure
+
+   !> Tangent dp/du of the virgin curve at pressure p, corrected eq. (3.27).
+   elemental real(dp) function virgin_tangent(p, cn, m) result(k)
+      real(dp), intent(in) :: p, cn, m
+      k = max(p, 0.0_dp)**(1.0_dp - m)/(cn*m)
+   end function virgin_tangent
+
+   !> Residual closure after unloading from A to p = 0 (SPEC D8).
+   elemental real(dp) function residual_closure(ua, pa, cn2, m2) result(ures)
+      real(dp), intent(in) :: ua, pa, cn2, m2
+      ures = ua - cn2*max(pa, 0.0_dp)**m2
+   end function residual_closure
+
+   !> Pressure on the unloading branch through A at closure u (zero below the residual closure).
+   elemental real(dp) function unloading_pressure(u, ua, pa, cn2, m2) result(p)
+      real(dp), intent(in) :: u, ua, pa, cn2, m2
+      real(dp) :: q
+      q = max(pa, 0.0_dp)**m2 - (ua - u)/cn2
+      if (q <= 0.0_dp) then
+         p = 0.0_dp
+      else
+         p = q**(1.0_dp/m2)
+      end if
+   end function unloading_pressure
+
+   !> Tangent dp/du of the unloading branch at pressure p.
+   elemental real(dp) function unloading_tangent(p, cn2, m2) result(k)
+      real(dp), intent(in) :: p, cn2, m2
+      k = max(p, 0.0_dp)**(1.0_dp - m2)/(cn2*m2)
+   end function unloading_tangent
+
+   !> Pressure of the normal law at closure u: the unloading/reloading branch
+   !! through A while u < u_A, the virgin curve otherwise.
+   elemental real(dp) function normal_pressure(u, cn, m, cn2, m2, on_unloading, ua, pa) result(p)
+      real(dp), intent(in) :: u, cn, m, cn2, m2
+      logical, intent(in) :: on_unloading
+      real(dp), intent(in) :: ua, pa
+      if (on_unloading .and. u < ua) then
+         p = unloading_pressure(u, ua, pa, cn2, m2)
+      else
+         p = virgin_pressure(u, cn, m)
+      end if
+   end function normal_pressure
+
+   !> Tangent dp/du of the normal law at closure u (see normal_pressure).
+   elemental real(dp) function normal_tangent(u, cn, m, cn2, m2, on_unloading, ua, pa) result(k)
+      real(dp), intent(in) :: u, cn, m, cn2, m2
+      logical, intent(in) :: on_unloading
+      real(dp), intent(in) :: ua, pa
+      if (on_unloading .and. u < ua) then
+         k = unloading_tangent(unloading_pressure(u, ua, pa, cn2, m2), cn2, m2)
+      else
+         k = virgin_tangent(virgin_pressure(u, cn, m), cn, m)
+      end if
+   end function normal_tangent
+
+   !> Elastic tangential stiffness per unit area, eq. (2.7): k_T^e = p_n^S / R.
+   elemental real(dp) function tangential_stiffness(p, s, r) result(k)
+      real(dp), intent(in) :: p, s, r
+      k = max(p, 0.0_dp)**s/r
+   end function tangential_stiffness
+
+   !> Friction coefficient after the effective slip ve (SPEC D1):
+   !! Coulomb mu_m; Fredriksson mu_m [1 - (1 - beta) exp(-n ve)]; none 0.
+   pure real(dp) function friction_coefficient(ifc, ve) result(mu)
+      type(interface_t), intent(in) :: ifc
+      real(dp), intent(in) :: ve
+      select case (ifc%friction)
+      case (FRICTION_NONE)
+         mu = 0.0_dp
+      case (FRICTION_FREDRIKSSON)
+         mu = ifc%mu_m*(1.0_dp - (1.0_dp - ifc%beta)*exp(-ifc%n_hard*max(ve, 0.0_dp)))
+      case default
+         mu = ifc%mu_m
+      end select
+   end function friction_coefficient
+end module contact_laws

@@ -1,0 +1,152 @@
+!> Data of the contact definition: interfaces (the interface law and its
+!! parameters, in model units), contact pairs, and the algorithm options.
+!! Plain data filled by the deck reader and by contact_definition; the laws
+!! themselves live in src/contact/.
+!!
+!! Model units: the conversion of the literature constants (µm and kgf/cm²)
+!! is done once, when the deck is read (SPEC §2.4), so that here
+!!     u_n = cn * p^m         (loading, virgin curve)
+!!     k_T^e = p^S / r_t      (elastic tangential stiffness per unit area)
+!! hold with u in the model's length unit and p in its stress unit.
+module contact_types
+   use kinds, only: dp
+   implicit none
+   private
+
+   public :: interface_t, contact_pair_t, contact_options_t, contact_def_t
+   public :: LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, FRICTION_COULOMB, FRICTION_FREDRIKSSON, &
+             UNITS_KGF_UM, UNITS_N_UM, UNITS_MODEL, UPDATE_EXPLICIT, UPDATE_RETURN, &
+             SLIP_IRREVERSIBLE, SLIP_GROSS, KGF_PER_NMM2, units_name, friction_name, update_name, slip_name
+
+   integer, parameter :: LAW_ROUGH = 1             !! the paper's rough interface (springs)
+   integer, parameter :: LAW_IDEAL = 2             !! smooth contact with Coulomb friction (reference)
+
+   integer, parameter :: FRICTION_NONE = 0         !! no tangential stiffness, no friction
+   integer, parameter :: FRICTION_COULOMB = 1      !! constant mu
+   integer, parameter :: FRICTION_FREDRIKSSON = 2  !! slip-hardening mu(v_e), SPEC D1
+
+   integer, parameter :: UNITS_KGF_UM = 1          !! cn in µm/(kgf/cm²)^m, R in the same system
+   integer, parameter :: UNITS_N_UM = 2            !! cn in µm/(N/mm²)^m
+   integer, parameter :: UNITS_MODEL = 3           !! constants already in model units
+
+   integer, parameter :: UPDATE_EXPLICIT = 1       !! the paper: F += K dU with K from the previous increment
+   integer, parameter :: UPDATE_RETURN = 2         !! return to the curves, repeat until in equilibrium
+
+   integer, parameter :: SLIP_IRREVERSIBLE = 1     !! v_e from all irreversible slip (SPEC §2.3 a)
+   integer, parameter :: SLIP_GROSS = 2            !! v_e from gross slip only (SPEC §2.3 b)
+
+   !> kgf/cm² per N/mm² (1 kgf/cm² = 0.0980665 N/mm²).
+   real(dp), parameter :: KGF_PER_NMM2 = 1.0_dp/0.0980665_dp
+
+   !> One contact interface: the law of the rough layer between two surfaces.
+   type :: interface_t
+      integer :: law = LAW_ROUGH
+      integer :: units = UNITS_KGF_UM
+      ! as given in the deck (input units), for the listing and the result file
+      real(dp) :: cn_in = 0.0_dp, m_in = 0.0_dp, cn2_in = 0.0_dp, m2_in = 0.0_dp
+      real(dp) :: r_in = 0.0_dp, s_in = 0.0_dp
+      logical :: r_given = .false.     !! R given; otherwise 2 cn m (1 + nu), eq. (2.8)
+      logical :: s_given = .false.     !! S given; otherwise 1 - m (SPEC D3)
+      ! in model units
+      real(dp) :: cn = 0.0_dp          !! loading: u = cn p^m
+      real(dp) :: m = 0.0_dp
+      real(dp) :: cn2 = 0.0_dp         !! unloading: u = u_A - cn2 (p_A^m2 - p^m2)
+      real(dp) :: m2 = 0.0_dp
+      real(dp) :: s = 0.0_dp           !! k_T^e = p^S / r_t
+      real(dp), allocatable :: r_t(:)  !! per pair of this interface (R depends on nu when computed)
+      ! tangential law and friction
+      integer :: friction = FRICTION_COULOMB
+      real(dp) :: mu_m = 0.0_dp        !! Coulomb mu, or Fredriksson's macroscopic mu_m
+      real(dp) :: beta = 1.0_dp        !! Fredriksson: initial coefficient beta mu_m
+      real(dp) :: n_hard = 0.0_dp      !! Fredriksson: hardening rate n [1/length]
+      logical :: hardening = .true.    !! bilinear branch between 0.625 mu p_n and mu p_n
+      real(dp) :: kappa = 0.045_dp     !! k_T^p / k_T^e, eq. (2.6)/(4.17)
+      integer :: slip_def = SLIP_IRREVERSIBLE
+      ! pairing
+      real(dp) :: tol = -1.0_dp        !! pairing tolerance (< 0: default from the mesh size)
+      integer :: line = 0              !! deck line of the INTERFACE (or first) card
+   end type interface_t
+
+   !> A zero-length two-node spring between node a (body A, above) and node b
+   !! (body B, below); the local axes (t, n) belong to body B, n points from B
+   !! into A.
+   type :: contact_pair_t
+      integer :: node_a = 0
+      integer :: node_b = 0
+      integer :: iface = 1
+      real(dp) :: t(2) = [1.0_dp, 0.0_dp]   !! unit tangent (cos alpha, sin alpha), eq. (3.31)
+      real(dp) :: n(2) = [0.0_dp, 1.0_dp]   !! unit normal, n = (-sin alpha, cos alpha)
+      real(dp) :: g0 = 0.0_dp               !! initial gap along n, eq. (3.8)
+      real(dp) :: area = 0.0_dp             !! lumped contact area A_j, eqs. (3.22), (3.26), (A1)-(A6)
+      real(dp) :: position(2) = 0.0_dp      !! coordinates of node b (for output)
+      integer :: line = 0                   !! deck line that created the pair
+   end type contact_pair_t
+
+   !> Options of the contact algorithm (SPEC §4.5), with the paper's defaults.
+   type :: contact_options_t
+      integer :: update = UPDATE_EXPLICIT
+      logical :: first_iterate = .false.    !! iterate the first increment with the secant
+      integer :: max_repeats = 30           !! cap on repeats of one increment
+      real(dp) :: p_start = -1.0_dp         !! starting pressure p_m (< 0: from the first increment)
+      integer :: n_start = 0                !! close the n_start pairs of smallest gap initially (0: by gap)
+      real(dp) :: gap_tol = -1.0_dp         !! pairs with g0 <= gap_tol start closed (< 0: 1e-9 x model size)
+      real(dp) :: tol_residual = 1.0e-10_dp !! relative out-of-balance force accepted by RETURN
+      real(dp) :: p_min_ratio = 1.0e-3_dp   !! floor of a newly closed pair's secant pressure, x p_m
+   end type contact_options_t
+
+   !> Everything the deck says about contact.
+   type :: contact_def_t
+      logical :: active = .false.
+      type(interface_t), allocatable :: ifaces(:)
+      type(contact_pair_t), allocatable :: pairs(:)
+      type(contact_options_t) :: opts
+   end type contact_def_t
+
+contains
+
+   pure function units_name(u) result(s)
+      integer, intent(in) :: u
+      character(len=:), allocatable :: s
+      select case (u)
+      case (UNITS_KGF_UM)
+         s = 'KGF_UM (cn in µm/(kgf/cm2)^m)'
+      case (UNITS_N_UM)
+         s = 'N_UM (cn in µm/(N/mm2)^m)'
+      case default
+         s = 'MODEL (constants in model units)'
+      end select
+   end function units_name
+
+   pure function friction_name(f) result(s)
+      integer, intent(in) :: f
+      character(len=:), allocatable :: s
+      select case (f)
+      case (FRICTION_NONE)
+         s = 'NONE'
+      case (FRICTION_COULOMB)
+         s = 'COULOMB'
+      case default
+         s = 'FREDRIKSSON'
+      end select
+   end function friction_name
+
+   pure function update_name(u) result(s)
+      integer, intent(in) :: u
+      character(len=:), allocatable :: s
+      if (u == UPDATE_RETURN) then
+         s = 'RETURN'
+      else
+         s = 'EXPLICIT'
+      end if
+   end function update_name
+
+   pure function slip_name(u) result(s)
+      integer, intent(in) :: u
+      character(len=:), allocatable :: s
+      if (u == SLIP_GROSS) then
+         s = 'GROSS'
+      else
+         s = 'IRREVERSIBLE'
+      end if
+   end function slip_name
+end module contact_types
