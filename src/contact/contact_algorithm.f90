@@ -27,14 +27,15 @@ module contact_algorithm
    use contact_types, only: contact_def_t, interface_t, LAW_ROUGH, FRICTION_NONE, UPDATE_RETURN, &
                             SLIP_GROSS
    use contact_laws, only: virgin_pressure, virgin_tangent, unloading_tangent, residual_closure, &
-                           normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient
+                           normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient, &
+                           bilinear_return
    use contact_element, only: spring_stiffness, spring_kinematics, spring_forces
    implicit none
    private
 
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
-             pair_force_vector, law_drift
+             pair_force_vector, law_drift, check_invariants
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
 
    integer, parameter :: NS_OPEN = 0, NS_LOADING = 1, NS_UNLOADING = 2
@@ -52,6 +53,7 @@ module contact_algorithm
       real(dp) :: utp = 0.0_dp            !! irreversible tangential displacement (SPEC §2.3 a)
       real(dp) :: utp_gross = 0.0_dp      !! gross-slip part only (SPEC §2.3 b)
       real(dp) :: ve = 0.0_dp             !! effective slip, path length of the chosen definition
+      real(dp) :: fy = 0.0_dp             !! largest |F_T| reached on the hardening branch or in slip
       integer :: tstate = TS_STICK
       real(dp) :: mu = 0.0_dp             !! friction coefficient used in the increment
       real(dp) :: kn = 0.0_dp, kt = 0.0_dp  !! spring stiffnesses of the increment
@@ -163,6 +165,14 @@ contains
                end if
             end if
             md%kte = pr%area*tangential_stiffness(p, ifc%s, ifc%r_t(local_index(cdef, j)))
+            ! the tangential state follows the committed forces and the new mu
+            md%tstate = TS_STICK
+            if (s%tstate == TS_SLIP .and. abs(s%ft) >= md%mu*s%fn*(1.0_dp - 1.0e-9_dp)) then
+               md%tstate = TS_SLIP
+            else if (ifc%hardening .and. s%tstate /= TS_STICK .and. &
+                     abs(s%ft) >= max(0.625_dp*md%mu*s%fn, s%fy)*(1.0_dp - 1.0e-9_dp)) then
+               md%tstate = TS_PLASTIC
+            end if
             call set_kt(ifc, md)
          end associate
       end do
@@ -235,6 +245,7 @@ contains
       logical, intent(in) :: first              !! first increment (secant iteration option)
       integer :: j
       real(dp) :: dun, dut, u, fn, ft, p, pfloor, trial, limit, pold
+      integer :: itrial
       logical :: returning, may_switch
 
       returning = cdef%opts%update == UPDATE_RETURN
@@ -329,18 +340,32 @@ contains
             end if
 
             ! 3. tangential (SPEC §4.3 item 3 and 4)
-            if (md%closed .and. ifc%friction /= FRICTION_NONE) then
+            if (md%closed .and. ifc%friction /= FRICTION_NONE .and. returning) then
+               ! RETURN: the bilinear law integrated exactly over the increment
+               limit = md%mu*fn
+               call bilinear_return(merge(0.0_dp, s%ft, md%newly_closed), dut, md%kte, ifc%kappa, limit, &
+                                    merge(0.0_dp, s%fy, md%newly_closed), ifc%hardening, ft, itrial)
+               if (itrial /= md%tstate .and. may_switch) then
+                  md%tstate = itrial
+                  call set_kt(ifc, md)
+                  call flag(changed(j), md%nswitch, st%chatter)
+               end if
+            else if (md%closed .and. ifc%friction /= FRICTION_NONE) then
                limit = md%mu*fn
                select case (md%tstate)
                case (TS_STICK)
                   ft = merge(0.0_dp, s%ft, md%newly_closed) + md%kte*dut
-                  if (ifc%hardening .and. abs(ft) >= 0.625_dp*limit .and. abs(ft) < limit .and. may_switch) then
+                  ! onto the branch when |F_T| passes 0.625 mu F_n, or, after unloading
+                  ! from the branch or from slip, the largest force reached there
+                  if (ifc%hardening .and. abs(ft) > max(0.625_dp*limit, s%fy)*(1.0_dp + 1.0e-8_dp) .and. &
+                      may_switch) then
+                     ! onto the hardening branch: its slope for the whole increment (eq. 4.15, 4.17)
                      md%tstate = TS_PLASTIC
                      call set_kt(ifc, md)
-                     ft = s%ft + md%kt*dut
+                     ft = merge(0.0_dp, s%ft, md%newly_closed) + md%kt*dut
                      call flag(changed(j), md%nswitch, st%chatter)
                   end if
-                  if (abs(ft) >= limit .and. may_switch) then
+                  if (abs(ft) > limit*(1.0_dp + 1.0e-8_dp) .and. may_switch) then
                      md%tstate = TS_SLIP
                      call set_kt(ifc, md)
                      ft = sign(limit, ft)
@@ -348,12 +373,14 @@ contains
                   end if
                case (TS_PLASTIC)
                   ft = s%ft + md%kt*dut
-                  if (dut*s%ft < 0.0_dp .and. may_switch) then
-                     md%tstate = TS_STICK       ! unloading along k_T^e (Bild 2, BC)
+                  trial = s%ft + md%kte*dut
+                  if ((dut*s%ft < 0.0_dp .or. abs(trial) < max(0.625_dp*limit, s%fy)) .and. may_switch) then
+                     ! unloading along k_T^e (Bild 2, BC), or an elastic trial below the branch
+                     md%tstate = TS_STICK
                      call set_kt(ifc, md)
-                     ft = s%ft + md%kt*dut
+                     ft = trial
                      call flag(changed(j), md%nswitch, st%chatter)
-                  else if (abs(ft) >= limit .and. may_switch) then
+                  else if (abs(ft) > limit*(1.0_dp + 1.0e-8_dp) .and. may_switch) then
                      md%tstate = TS_SLIP
                      call set_kt(ifc, md)
                      ft = sign(limit, ft)
@@ -361,7 +388,7 @@ contains
                   end if
                case default
                   trial = merge(0.0_dp, s%ft, md%newly_closed) + md%kte*dut
-                  if (abs(trial) < limit*(1.0_dp - 1.0e-12_dp) .and. may_switch) then
+                  if (abs(trial) < limit*(1.0_dp - 1.0e-8_dp) .and. may_switch) then
                      md%tstate = TS_STICK       ! back inside the cone: stick again
                      call set_kt(ifc, md)
                      ft = trial
@@ -422,8 +449,10 @@ contains
                   s%ve = s%ve + abs(dutp)
                end if
                s%tstate = md%tstate
+               if (md%tstate /= TS_STICK) s%fy = max(s%fy, abs(s%ft))
             else
                s%closed = .false.
+               s%fy = 0.0_dp
                s%fn = 0.0_dp
                s%ft = 0.0_dp
                s%tstate = TS_STICK
@@ -434,6 +463,41 @@ contains
          end associate
       end do
    end subroutine commit_increment
+
+   !> SPEC §7 invariants of the committed states: no closed pair in tension,
+   !! |F_T| <= mu F_n, the effective slip never decreases (`ve_old` is the
+   !! previous increment's).  Returns the number of violations and a message
+   !! naming the first one.
+   subroutine check_invariants(st, ve_old, nbad, msg)
+      type(contact_state_t), intent(in) :: st
+      real(dp), intent(in) :: ve_old(:)
+      integer, intent(out) :: nbad
+      character(len=:), allocatable, intent(out) :: msg
+      real(dp) :: fscale, tol
+      integer :: j
+      character(len=24) :: b
+      nbad = 0
+      msg = ''
+      fscale = max(maxval([0.0_dp, abs(st%s%fn)]), tiny(1.0_dp))
+      tol = 1.0e-10_dp*fscale
+      do j = 1, size(st%s)
+         associate (s => st%s(j))
+            write (b, '(i0)') j
+            if (s%closed .and. s%fn < -tol) call bad('pair '//trim(b)//' is closed with a tensile normal force')
+            if (.not. s%closed .and. (abs(s%fn) > 0.0_dp .or. abs(s%ft) > 0.0_dp)) &
+               call bad('pair '//trim(b)//' is open but carries a force')
+            if (abs(s%ft) > s%mu*max(s%fn, 0.0_dp) + tol) call bad('pair '//trim(b)//' has |F_T| > mu F_n')
+            if (s%ve < ve_old(j) - 1.0e-14_dp*max(1.0_dp, ve_old(j))) &
+               call bad('pair '//trim(b)//': the effective slip decreased')
+         end associate
+      end do
+   contains
+      subroutine bad(text)
+         character(len=*), intent(in) :: text
+         nbad = nbad + 1
+         if (nbad == 1) msg = text
+      end subroutine bad
+   end subroutine check_invariants
 
    !> Largest departure of a closed pair's normal force from its curve,
    !! |F_n - A p(u_n)| / max F_n: the drift of the explicit scheme (SPEC §4.2).

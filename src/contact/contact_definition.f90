@@ -426,6 +426,8 @@ contains
             end do
             area = 0.0_dp
             if (have_b) call lumped_areas(m, ie_b, ik_b, paired, area)
+            ! the node on the axis of a quadratic axisymmetric edge gets zero (not round-off)
+            where (area < 1.0e-13_dp*maxval(area)) area = 0.0_dp
             j = 0
             do k = np0 + 1, size(pairs)
                pairs(k)%area = area(pairs(k)%node_b)

@@ -18,7 +18,7 @@ module contact_laws
    private
    public :: convert_interface, r_literature, virgin_pressure, virgin_closure, virgin_tangent, &
              unloading_pressure, unloading_tangent, residual_closure, normal_pressure, &
-             normal_tangent, tangential_stiffness, friction_coefficient
+             normal_tangent, tangential_stiffness, friction_coefficient, bilinear_return
 
 contains
 
@@ -140,6 +140,44 @@ contains
       real(dp), intent(in) :: p, s, r
       k = max(p, 0.0_dp)**s/r
    end function tangential_stiffness
+
+   !> Exact integration of the bilinear tangential law with the Coulomb
+   !! limit over one increment at fixed normal force (return mapping): from
+   !! the force f0, an increment du moves elastically (slope k_e) until the
+   !! force magnitude reaches the branch level fb = max(0.625 L, fy), then
+   !! along the hardening branch (slope kappa k_e) if it is on, and the force
+   !! is capped at the limit L = mu F_n (gross slip).  fy is the largest force
+   !! magnitude reached on the branch before: unloading from the branch or from
+   !! slip is elastic (Bild 2, BC) until that level is reached again.
+   !! tstate: 0 stick (elastic), 1 hardening branch, 2 slip.
+   pure subroutine bilinear_return(f0, du, ke, kappa, limit, fy, hardening, f, tstate)
+      real(dp), intent(in) :: f0, du, ke, kappa, limit, fy
+      logical, intent(in) :: hardening
+      real(dp), intent(out) :: f
+      integer, intent(out) :: tstate
+      real(dp) :: trial, fb, dsign, du_el
+      trial = f0 + ke*du
+      tstate = 0
+      f = trial
+      fb = min(max(0.625_dp*limit, fy), limit)
+      if (.not. hardening) fb = limit
+      if (abs(trial) <= fb) return
+      dsign = sign(1.0_dp, trial)
+      if (hardening .and. fb < limit) then
+         ! elastic up to the branch level, then along the branch
+         if (f0*dsign >= fb) then
+            du_el = 0.0_dp
+            f = f0 + kappa*ke*du
+         else
+            du_el = (fb*dsign - f0)/ke
+            f = fb*dsign + kappa*ke*(du - du_el)
+         end if
+         tstate = 1
+         if (abs(f) <= limit) return
+      end if
+      f = limit*dsign
+      tstate = 2
+   end subroutine bilinear_return
 
    !> Friction coefficient after the effective slip ve (SPEC D1):
    !! Coulomb mu_m; Fredriksson mu_m [1 - (1 - beta) exp(-n ve)]; none 0.

@@ -37,7 +37,7 @@ module incremental
    use quadrature, only: max_gp
    use contact_types, only: UPDATE_RETURN, contact_pair_t
    use contact_algorithm, only: contact_state_t, contact_init, begin_increment, pair_matrix, &
-                                evaluate_pairs, commit_increment, pair_force_vector, law_drift, &
+                                evaluate_pairs, commit_increment, pair_force_vector, law_drift, check_invariants, &
                                 NS_OPEN, NS_LOADING, NS_UNLOADING, TS_SLIP
    use restraint_check, only: find_bodies
    use results_hdf5, only: results_file_t, K2D_VERSION
@@ -69,6 +69,8 @@ module incremental
       integer, allocatable :: repeats(:)         !! repeats (mode changes) per increment
       real(dp), allocatable :: residual(:)       !! relative out-of-balance force after each increment
       real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
+      real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
+      integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
       character(len=:), allocatable :: results_path
    end type run_result_t
 
@@ -94,7 +96,11 @@ contains
       integer(kind=8) :: t0, t1, rate
       character(len=:), allocatable :: solver_name, lis_path, lis_level
       logical :: has_contact, need_factor, converged, returning
-      real(dp) :: fscale, rnorm, gap_tol
+      real(dp) :: fscale, rnorm, gap_tol, force_scale
+      real(dp), allocatable :: ve_old(:)
+      integer, allocatable :: body(:)
+      integer :: nbody, nbad
+      character(len=:), allocatable :: imsg
 
       call system_clock(t0, rate)
       call complete_model(m)
@@ -143,6 +149,10 @@ contains
       allocate (res%disp(2, m%npoin), res%react(2, m%npoin), fext(2, m%npoin), du(2, m%npoin), &
                 ddu(2, m%npoin), rhs(map%neq), fr(2, m%npoin), dlam(m%ncase), carry(map%neq), fsp(2, m%npoin))
       allocate (res%iterations(m%nincs), res%repeats(m%nincs), res%residual(m%nincs), res%drift(m%nincs))
+      allocate (res%imbalance(m%nincs), res%violations(m%nincs), ve_old(npair))
+      res%imbalance = 0.0_dp
+      res%violations = 0
+      force_scale = tiny(1.0_dp)
       res%iterations = 0
       res%repeats = 0
       res%residual = 0.0_dp
@@ -160,6 +170,8 @@ contains
       gap_tol = m%contact%opts%gap_tol
       if (gap_tol < 0.0_dp) gap_tol = 1.0e-9_dp*model_size(m)
       call contact_init(m%contact, gap_tol, res%contact)
+      allocate (body(m%npoin))
+      call find_bodies(m, reshape([integer ::], [2, 0]), body, nbody)
       if (has_contact) then
          call start_pressure(m, fcase, m%lambda(:, 1) - m%lambda(:, 0), res%contact, status)
          if (.not. status%ok()) return
@@ -290,12 +302,18 @@ contains
             res%residual(inc) = rnorm
             carry = rhs
             if (.not. converged .and. (returning .or. any(changed))) then
-               call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
-                               itoa(res%iterations(inc))//' solutions ('//merge('contact states keep changing', &
-                               'out-of-balance force '//rtoa(rnorm)//' ', any(changed))// &
-                               '); reduce the increment size or raise CONTACT REPEATS')
+               if (any(changed)) then
+                  call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
+                                  itoa(res%iterations(inc))//' solutions (contact states keep changing); '// &
+                                  'reduce the increment size or raise CONTACT REPEATS')
+               else
+                  call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
+                                  itoa(res%iterations(inc))//' solutions (relative out-of-balance force '// &
+                                  rtoa(rnorm)//'); reduce the increment size or raise CONTACT REPEATS')
+               end if
                exit
             end if
+            ve_old = res%contact%s%ve
             call commit_increment(m%contact, res%contact)
             res%drift(inc) = law_drift(m%contact, res%contact)
          end if
@@ -314,6 +332,21 @@ contains
          res%react = 0.0_dp
          where (restrained) res%react = fr + fsp - fext
 
+         ! invariants (SPEC §7): every body in equilibrium under loads, reactions
+         ! and spring forces; no tension; |F_T| <= mu F_n; v_e non-decreasing
+         force_scale = max(force_scale, maxval(abs(fext)), maxval(abs(res%react)), maxval(abs(fsp)))
+         res%imbalance(inc) = body_imbalance(body, nbody, fext + res%react - fsp, force_scale)
+         nbad = 0
+         imsg = ''
+         if (has_contact) call check_invariants(res%contact, ve_old, nbad, imsg)
+         if (res%imbalance(inc) > 1.0e-8_dp) then
+            nbad = nbad + 1
+            imsg = 'a body is out of equilibrium by '//rtoa(res%imbalance(inc))//' of the load'
+         end if
+         res%violations(inc) = nbad
+         if (nbad > 0) write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(inc)//': '//itoa(nbad)// &
+            ' invariant violation(s): '//imsg
+
          call rf%open_increment(inc, m%lambda(:, inc), res%iterations(inc), nrep, converged, gid, status)
          if (.not. status%ok()) exit
          block
@@ -324,6 +357,9 @@ contains
             call rf%write_real2(gid, 'stress_gauss', res%sig_gp, err)
             call rf%write_real2(gid, 'reaction', res%react, err)
             if (has_contact) call rf%attr_real0(gid, 'residual', res%residual(inc), err)
+            if (has_contact) call rf%attr_real0(gid, 'law_drift', res%drift(inc), err)
+            call rf%attr_real0(gid, 'imbalance', res%imbalance(inc), err)
+            call rf%attr_int(gid, 'invariant_violations', res%violations(inc), err)
             if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(inc))
          end block
          if (has_contact .and. status%ok()) call write_contact_results(rf, gid, m, res%contact, status)
@@ -370,6 +406,20 @@ contains
       if (have_lis) close (lu)
       call solver%free()
    end subroutine run_analysis
+
+   !> Largest |sum of the forces on a body| relative to the force scale of the run.
+   pure real(dp) function body_imbalance(body, nbody, f, scale) result(worst)
+      integer, intent(in) :: body(:), nbody
+      real(dp), intent(in) :: f(:, :)        !! (2, npoin) external + reactions - spring internal forces
+      real(dp), intent(in) :: scale          !! largest nodal force seen so far
+      real(dp) :: total(2, max(nbody, 1))
+      integer :: ip
+      total = 0.0_dp
+      do ip = 1, size(body)
+         if (body(ip) > 0) total(:, body(ip)) = total(:, body(ip)) + f(:, ip)
+      end do
+      worst = maxval(abs(total))/scale
+   end function body_imbalance
 
    !> Give a model built in code the empty parts a deck would have.
    subroutine complete_model(m)

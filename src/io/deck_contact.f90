@@ -394,6 +394,10 @@ contains
          okf = .true.
          call d%get_word(icard, 11, 20, 'CONTACT/FRICTION', 'LAW', kind, okf)
          if (.not. okf) return
+         ! FREDRIKSSON does not fit ten columns: any abbreviation of 4+ letters
+         if (len(kind) >= 4 .and. len(kind) <= 11) then
+            if (kind == 'FREDRIKSSON'(1:len(kind))) kind = 'FREDRIKSSON'
+         end if
          select case (kind)
          case ('NONE')
             call tail(icard, 21, 'NONE alone', okf)

@@ -1,0 +1,202 @@
+#!/usr/bin/python3
+"""Write Kontakt2D decks for structured multi-block meshes.
+
+A small library used by the scripts that generate the example and test decks
+(docs/deck-format.md is the format).  Each body is a set of rectangular blocks
+on grid lines; nodes are shared inside a body, never between bodies, so two
+bodies that touch get coincident node pairs for the contact surfaces.
+
+    from k2d_deck import Deck
+    d = Deck("title", ntype=1, nnode=4)
+    a = d.block("A", xs=[0, 5, 10], ys=[0, 5, 10], mat=1)
+    ...
+    d.write("case.dat")
+"""
+import math
+
+FMT_I = "%5d"
+
+
+def f10(x):
+    """A real in a 10-column field, as precise as fits."""
+    if x == 0:
+        return "%10s" % "0.0"
+    for fmt in ("%10.6f", "%10.5f", "%10.4f", "%10.3f"):
+        s = fmt % x
+        if len(s) <= 10 and abs(float(s) - x) <= 1e-9 * max(1.0, abs(x)):
+            return s
+    s = "%10.4e" % x
+    if len(s) > 10:
+        s = "%10.3e" % x
+    return s
+
+
+def graded(a, b, n, ratio=1.0):
+    """n cells from a to b, last cell / first cell = ratio."""
+    if n == 1 or abs(ratio - 1.0) < 1e-12:
+        return [a + (b - a) * k / n for k in range(n + 1)]
+    q = ratio ** (1.0 / (n - 1))
+    s = [(q ** k - 1.0) / (q ** n - 1.0) for k in range(n + 1)]
+    return [a + (b - a) * t for t in s]
+
+
+class Deck:
+    def __init__(self, title, ntype, nnode, solver="SKYLINE"):
+        self.title = title
+        self.ntype = ntype
+        self.nnode = nnode
+        self.solver = solver
+        self.nodes = []          # (x, y, body)
+        self.index = {}          # (body, x, y) -> node number
+        self.elements = []       # (mat, [nodes], body)
+        self.materials = {}      # mat -> (E, nu, thick)
+        self.fixes = {}          # node -> [code, ux, uy, case]
+        self.ties = []           # (code, [nodes])
+        self.edge_loads = []     # card strings
+        self.point_loads = []
+        self.contact = []        # raw lines of the CONTACT block
+        self.increments = []     # (nstep, [factors])
+        self.options = []
+        self.comments = []
+
+    # ---------------------------------------------------------------- mesh
+    def node(self, body, x, y):
+        key = (body, round(x, 9), round(y, 9))
+        if key not in self.index:
+            self.nodes.append((x, y, body))
+            self.index[key] = len(self.nodes)
+        return self.index[key]
+
+    def find(self, body, x, y):
+        return self.index.get((body, round(x, 9), round(y, 9)))
+
+    def block(self, body, xs, ys, mat, mapping=None):
+        """Elements on the grid xs x ys (lists of grid lines); mapping(x, y) -> (x', y')
+        may curve the block (the grid is in parameter space then)."""
+        quad = self.nnode >= 8
+        mp = mapping or (lambda x, y: (x, y))
+
+        def nd(x, y):
+            X, Y = mp(x, y)
+            return self.node(body, X, Y)
+
+        for j in range(len(ys) - 1):
+            for i in range(len(xs) - 1):
+                xa, xb, ya, yb = xs[i], xs[i + 1], ys[j], ys[j + 1]
+                c = [nd(xa, ya), nd(xb, ya), nd(xb, yb), nd(xa, yb)]
+                if quad:
+                    xm, ym = 0.5 * (xa + xb), 0.5 * (ya + yb)
+                    c += [nd(xm, ya), nd(xb, ym), nd(xm, yb), nd(xa, ym)]
+                    if self.nnode == 9:
+                        c.append(nd(xm, ym))
+                    self.elements.append((mat, c, body))
+                elif self.nnode == 3:
+                    self.elements.append((mat, [c[0], c[1], c[2]], body))
+                    self.elements.append((mat, [c[0], c[2], c[3]], body))
+                else:
+                    self.elements.append((mat, c, body))
+
+    def nodes_where(self, body, pred):
+        """Node numbers of `body` whose coordinates satisfy pred(x, y), sorted by x then y."""
+        sel = [(x, y, k) for k, (x, y, b) in enumerate(self.nodes, 1) if b == body and pred(x, y)]
+        return [k for x, y, k in sorted(sel)]
+
+    def edges_where(self, body, pred):
+        """Element edges of `body` whose nodes all satisfy pred: (elem, [nodes along the edge])."""
+        out = []
+        for e, (mat, c, b) in enumerate(self.elements, 1):
+            if b != body:
+                continue
+            nc = 3 if self.nnode == 3 else 4
+            for k in range(nc):
+                a, bb = c[k], c[(k + 1) % nc]
+                ids = [a, bb] if self.nnode < 8 else [a, c[nc + k], bb]
+                if all(pred(*self.nodes[i - 1][:2]) for i in ids):
+                    out.append((e, ids))
+        return out
+
+    # ---------------------------------------------------------------- data
+    def material(self, mat, E, nu, thick=1.0):
+        self.materials[mat] = (E, nu, thick)
+
+    def fix(self, node, code, ux=None, uy=None, case=None):
+        old = self.fixes.get(node)
+        if old:
+            c = "%d%d" % (int(old[0][0]) | int(code[0]), int(old[0][1]) | int(code[1]))
+            self.fixes[node] = [c, ux if ux is not None else old[1], uy if uy is not None else old[2], case or old[3]]
+        else:
+            self.fixes[node] = [code, ux, uy, case]
+
+    def edge_pressure(self, body, pred, pn, pt=0.0, case=None):
+        """Uniform pressure pn (compressive) and traction pt on the edges selected."""
+        for e, ids in self.edges_where(body, pred):
+            s = FMT_I % e + "".join(FMT_I % i for i in ids) + (" " * 5 if len(ids) == 2 else "")
+            vals = [pn] * len(ids) + ([None] if len(ids) == 2 else []) + [pt] * len(ids) + ([None] if len(ids) == 2 else [])
+            s += "".join(" " * 10 if v is None else f10(v) for v in vals)
+            if case:
+                s += FMT_I % case
+            self.edge_loads.append(s)
+
+    def point_load(self, node, fx, fy, case=None):
+        self.point_loads.append(FMT_I % node + f10(fx) + f10(fy) + (FMT_I % case if case else ""))
+
+    def tie(self, code, nodes):
+        for k in range(0, len(nodes) - 1, 14):
+            chunk = [nodes[0]] + nodes[1 + k:1 + k + 14]
+            self.ties.append("%5s" % code + "".join(FMT_I % n for n in chunk))
+
+    def node_list_cards(self, nodes):
+        return ["".join(FMT_I % n for n in nodes[i:i + 16]) for i in range(0, len(nodes), 16)]
+
+    # ---------------------------------------------------------------- output
+    def write(self, path):
+        L = []
+        for c in self.comments:
+            L.append("# " + c)
+        L += ["TITLE", self.title, "CONTROL",
+              "#NPOI NELE NVFI NTYP NNOD NMAT NGAU SOLVER",
+              "%5d%5d%5d%5d%5d%5d%5d%10s" % (len(self.nodes), len(self.elements), len(self.fixes), self.ntype,
+                                            self.nnode, len(self.materials), 0, self.solver)]
+        if self.options:
+            L += ["OPTIONS"] + self.options
+        L.append("ELEMENTS")
+        for k, (mat, c, b) in enumerate(self.elements, 1):
+            L.append(FMT_I % k + FMT_I % mat + "".join(FMT_I % n for n in c) + "   # body " + b)
+        L.append("NODES")
+        for k, (x, y, b) in enumerate(self.nodes, 1):
+            L.append(FMT_I % k + f10(x) + f10(y))
+        L.append("RESTRAINTS")
+        for n in sorted(self.fixes):
+            code, ux, uy, case = self.fixes[n]
+            s = FMT_I % n + "%5s" % code
+            if ux is not None or uy is not None or case:
+                s += (f10(ux) if ux is not None else " " * 10) + (f10(uy) if uy is not None else " " * 10)
+            if case:
+                s += FMT_I % case
+            L.append(s.rstrip())
+        if self.ties:
+            L += ["TIES"] + self.ties
+        L.append("MATERIALS")
+        for m in sorted(self.materials):
+            E, nu, t = self.materials[m]
+            L.append(FMT_I % m + f10(E) + f10(nu) + f10(t))
+        if self.point_loads or self.edge_loads:
+            L.append("LOADS")
+            if self.point_loads:
+                L += ["POINT"] + self.point_loads
+            if self.edge_loads:
+                L += ["EDGE"] + [s.rstrip() for s in self.edge_loads]
+        if self.contact:
+            L += ["CONTACT"] + self.contact
+        if self.increments:
+            L.append("INCREMENTS")
+            for n, fs in self.increments:
+                L.append((FMT_I % n + "".join(" " * 10 if f is None else f10(f) for f in fs)).rstrip())
+        L.append("END")
+        with open(path, "w") as f:
+            f.write("\n".join(L) + "\n")
+
+
+def circle_y(r, radius):
+    """Height above the lowest point of a circle of the given radius at distance r from its axis."""
+    return radius - math.sqrt(max(radius * radius - r * r, 0.0))
