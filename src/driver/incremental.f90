@@ -248,8 +248,12 @@ contains
                call solver%factorize(status)
                if (.not. status%ok()) then
                   if (status%code == STAT_SINGULAR .and. solver%failed_equation() > 0) then
+                     ! keep the solver's pivot figures, name the node and dof instead of the equation
                      status%message = 'singular or unrestrained model at '// &
-                                      map%describe(solver%failed_equation())//': '//status%message
+                                      map%describe(solver%failed_equation())//': '// &
+                                      status%message(index(status%message, ': ') + 2:)
+                     if (has_contact) status%message = status%message//'; a body held only by contact '// &
+                                                       'springs has no support once they open'
                   end if
                   exit
                end if
