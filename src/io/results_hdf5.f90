@@ -153,13 +153,19 @@ contains
       class(results_file_t), intent(inout) :: this
       integer(hid_t), intent(in) :: gid
       type(status_t), intent(inout) :: status
-      integer :: err
-      call h5gclose_f(gid, err)
+      integer :: err, e
+      err = 0
+      call h5gclose_f(gid, e)
+      call keep(e, err)
       this%ncompleted = this%ncompleted + 1
-      call h5adelete_f(this%fid, 'increments_completed', err)
+      call h5adelete_f(this%fid, 'increments_completed', e)
+      call keep(e, err)
       call attr_int(this%fid, 'increments_completed', this%ncompleted, err)
-      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, err)
-      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot flush '//this%path)
+      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, e)
+      call keep(e, err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot record increment '//itoa(this%ncompleted)// &
+                                   ' as completed (close its group, update increments_completed, flush) in '// &
+                                   this%path)
    end subroutine results_close_increment
 
    !> Replace the root attribute `status` (running, completed, failed: ...).
