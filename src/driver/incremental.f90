@@ -23,7 +23,7 @@
 !! A numerical failure stops the loop cleanly: every finished increment stays
 !! in the result file, whose status attribute says what happened.
 module incremental
-   use kinds, only: dp, stdout, stderr
+   use kinds, only: dp, i8, stdout, stderr
    use errors, only: status_t, STAT_SINGULAR, STAT_INPUT, STAT_IO, STAT_JACOBIAN, STAT_NO_CONVERGENCE
    use strings, only: itoa, rtoa, strip_extension, basename
    use model, only: model_t, MAX_NODE
@@ -72,6 +72,7 @@ module incremental
       real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
       integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
       character(len=:), allocatable :: results_path
+      logical :: reported = .false.              !! a failure was already printed
    end type run_result_t
 
 contains
@@ -93,7 +94,9 @@ contains
       integer :: ip, inc, idof, lu, ic, j, iter, nrep, npair
       logical :: have_lis
       integer(hid_t) :: gid
-      integer(kind=8) :: t0, t1, rate
+      integer(i8) :: t0, t1, rate
+      integer :: ios
+      character(len=256) :: iomsg
       character(len=:), allocatable :: solver_name, lis_path, lis_level
       logical :: has_contact, need_factor, converged, returning
       real(dp) :: fscale, rnorm, gap_tol, force_scale
@@ -181,19 +184,29 @@ contains
       call recover_stresses(m, res%disp, res%gp_start, res%xygp, res%sig_gp, res%sig_nd, status)
       if (.not. status%ok()) return
 
-      ! ---- result file and listing
-      call rf%create(res%results_path, m, res%gp_start(2:) - res%gp_start(:m%nelem), res%xygp, status)
-      if (.not. status%ok()) return
-      if (has_contact) then
-         call rf%write_contact_definition(m%contact, status)
-         if (.not. status%ok()) return
-      end if
+      ! ---- listing, then the result file (nothing is left behind if either fails)
       have_lis = lis_level /= 'NONE'
       lu = 0
       if (have_lis) then
-         open (newunit=lu, file=lis_path, status='replace', action='write')
+         open (newunit=lu, file=lis_path, status='replace', action='write', iostat=ios, iomsg=iomsg)
+         if (ios /= 0) then
+            call status%set(STAT_INPUT, 'cannot open the listing file '//lis_path//': '//trim(iomsg))
+            return
+         end if
          call list_header(lu, m, K2D_VERSION, solver%name(), map%neq, map%nres)
          if (lis_level == 'FULL') call list_input(lu, m)
+      end if
+      call rf%create(res%results_path, m, res%gp_start(2:) - res%gp_start(:m%nelem), res%xygp, status)
+      if (.not. status%ok()) then
+         ! a result path that cannot be written is a command-line error
+         status%code = STAT_INPUT
+         call rf%close()
+         if (have_lis) close (lu, status='delete')
+         return
+      end if
+      if (has_contact) then
+         call rf%write_contact_definition(m%contact, status)
+         if (.not. status%ok()) return
       end if
       if (.not. opts%quiet) then
          call list_header(stdout, m, K2D_VERSION, solver%name(), map%neq, map%nres)
@@ -402,6 +415,7 @@ contains
          end if
       else
          call rf%set_status('failed at increment '//itoa(res%completed + 1)//': '//status%message)
+         res%reported = .true.
          write (stderr, '(a)') 'kontakt2d: increment '//itoa(res%completed + 1)//' failed: '//status%message
          write (stderr, '(a)') 'kontakt2d: '//itoa(res%completed)//' completed increment(s) are kept in '// &
             res%results_path
