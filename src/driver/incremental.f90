@@ -17,8 +17,8 @@ module incremental
    use errors, only: status_t, STAT_SINGULAR, STAT_INPUT, STAT_IO, STAT_JACOBIAN
    use strings, only: itoa, rtoa, strip_extension, basename
    use model, only: model_t, MAX_NODE
-   use dof_map, only: dof_map_t, build_dof_map
-   use graph, only: build_node_graph, build_equation_graph
+   use dof_map, only: dof_map_t
+   use equation_numbering, only: numbering_report_t, number_equations, write_numbering_report
    use linear_solver, only: linear_solver_t
    use solver_factory, only: create_solver
    use assembly, only: coupling_t, assemble_bodies, assemble_load_cases, element_equations, &
@@ -64,7 +64,8 @@ contains
       class(linear_solver_t), allocatable :: solver
       type(coupling_t) :: coup
       type(results_file_t) :: rf
-      integer, allocatable :: order(:), nxadj(:), nadj(:), xadj(:), adjncy(:), nolinks(:, :)
+      integer, allocatable :: xadj(:), adjncy(:), nolinks(:, :)
+      type(numbering_report_t) :: numbering
       real(dp), allocatable :: fcase(:, :, :), ucase(:, :, :), fext(:, :), du(:, :), rhs(:), fr(:, :)
       real(dp), allocatable :: dlam(:)
       logical, allocatable :: restrained(:, :)
@@ -91,11 +92,9 @@ contains
       lis_level = m%listing_level
 
       ! ---- equations, pattern, K_AB
-      allocate (order(m%npoin), nolinks(2, 0))
-      order = [(ip, ip=1, m%npoin)]
-      call build_dof_map(m, order, map)
-      call build_node_graph(m, nolinks, nxadj, nadj)
-      call build_equation_graph(map, nxadj, nadj, xadj, adjncy)
+      allocate (nolinks(2, 0))
+      call number_equations(m, solver_name, nolinks, map, xadj, adjncy, numbering, status)
+      if (.not. status%ok()) return
       call create_solver(solver_name, solver, status)
       if (.not. status%ok()) then
          status%code = STAT_INPUT
@@ -129,10 +128,12 @@ contains
       if (lis_level /= 'NONE') then
          open (newunit=lu, file=lis_path, status='replace', action='write')
          call list_header(lu, m, K2D_VERSION, solver%name(), map%neq, map%nres)
+         call write_numbering_report(lu, numbering)
          if (lis_level == 'FULL') call list_input(lu, m)
       end if
       if (.not. opts%quiet) then
          call list_header(stdout, m, K2D_VERSION, solver%name(), map%neq, map%nres)
+         call write_numbering_report(stdout, numbering)
          write (stdout, '(a)') ' Results      : '//res%results_path
          if (lu > 0) write (stdout, '(a)') ' Listing      : '//lis_path
          write (stdout, '(a)') repeat('-', 78)

@@ -60,6 +60,7 @@ contains
       m%title = ''
       m%solver_name = 'SKYLINE'
       m%listing_level = 'SHORT'
+      m%renumber = 'AUTO'
       allocate (m%fixes(0), m%point_loads(0), m%edge_loads(0), m%body_loads(0), m%mats(0))
       if (.not. loaded) then
          errors = d%errors
@@ -346,8 +347,17 @@ contains
             else if (ok) then
                m%listing_level = val
             end if
+         case ('RENUMBER')
+            call d%get_word(ic, 11, 20, 'OPTIONS', 'RENUMBER', val, ok)
+            if (ok .and. all(val /= [character(len=4) :: 'RCM', 'NONE'])) then
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: RENUMBER (columns 11-20) expected RCM or NONE, '// &
+                               'found "'//val//'"')
+            else if (ok) then
+               m%renumber = val
+            end if
          case default
-            call d%error_at(ic, 1, 'E-OPTION', 'OPTIONS: unknown option "'//key//'" (columns 1-10); known: LISTING')
+            call d%error_at(ic, 1, 'E-OPTION', 'OPTIONS: unknown option "'//key//'" (columns 1-10); '// &
+                            'known: LISTING, RENUMBER')
          end select
       end do
    end subroutine read_options

@@ -111,6 +111,8 @@ module model
       type(edge_set_t), allocatable :: edge_sets(:)
       ! output control
       character(len=:), allocatable :: listing_level  !! FULL, SHORT or NONE
+      ! equation numbering: AUTO (RCM for skyline), RCM or NONE (OPTIONS RENUMBER)
+      character(len=:), allocatable :: renumber
    end type model_t
 
 contains
