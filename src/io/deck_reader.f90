@@ -123,20 +123,20 @@ contains
          case ('MESH')
             call start_mesh_block(d, ic, m, ctl)
          case ('ELEMENTS')
-            if (ctl%ok .and. mesh_conflict(d, ic, ctl, seen)) then
+            if (.not. ctl%ok) then
                call skip_to_block(d)
-            else if (ctl%ok) then
-               call read_elements(d, ic, m)
+            else if (mesh_conflict(d, ic, ctl, seen)) then
+               call skip_to_block(d)
             else
-               call skip_to_block(d)
+               call read_elements(d, ic, m)
             end if
          case ('NODES')
-            if (ctl%ok .and. mesh_conflict(d, ic, ctl, seen)) then
+            if (.not. ctl%ok) then
                call skip_to_block(d)
-            else if (ctl%ok) then
-               call read_nodes(d, ic, m)
+            else if (mesh_conflict(d, ic, ctl, seen)) then
+               call skip_to_block(d)
             else
-               call skip_to_block(d)
+               call read_nodes(d, ic, m)
             end if
          case ('RESTRAINTS')
             restraint_line = d%cards(ic)%line

@@ -48,6 +48,8 @@ contains
 
       n0 = d%errors%n
       file = ''
+      name = ''
+      key = ''
       gmsh_line = 0
       nmat = 0
       allocate (names(8), mats(8), lines(8))
@@ -131,14 +133,11 @@ contains
       character(len=*), intent(in) :: deck_file, file
       character(len=:), allocatable :: p
       integer :: k
-      if (len(file) > 0) then
-         if (file(1:1) == '/') then
-            p = file
-            return
-         end if
-      end if
+      logical :: absolute
+      absolute = .false.
+      if (len(file) > 0) absolute = file(1:1) == '/'
       k = index(deck_file, '/', back=.true.)
-      if (k == 0) then
+      if (absolute .or. k == 0) then
          p = file
       else
          p = deck_file(1:k)//file
