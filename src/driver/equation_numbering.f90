@@ -35,7 +35,7 @@ module equation_numbering
 contains
 
    !> Choose the node order, number the equations and build the equation graph.
-   subroutine number_equations(m, solver_name, links, map, xadj, adjncy, rep, status)
+   subroutine number_equations(m, solver_name, links, map, xadj, adjncy, rep, status, ties)
       type(model_t), intent(in) :: m
       character(len=*), intent(in) :: solver_name   !! solver in use (case-insensitive)
       integer, intent(in) :: links(:, :)            !! (2, nlink) extra node couplings (contact pairs, ties)
@@ -43,6 +43,7 @@ contains
       integer, allocatable, intent(out) :: xadj(:), adjncy(:)   !! equation graph (CSR, 1-based)
       type(numbering_report_t), intent(out) :: rep
       type(status_t), intent(inout) :: status
+      integer, intent(in), optional :: ties(:, :)   !! (3, ntie) master, slave, dof: passed to build_dof_map
       integer, allocatable :: order(:), nxadj(:), nadj(:), x0(:), a0(:)
       type(dof_map_t) :: map0
       character(len=:), allocatable :: choice
@@ -74,7 +75,11 @@ contains
       call build_node_graph(m, links, nxadj, nadj)
       allocate (order(m%npoin))
       order = [(ip, ip=1, m%npoin)]
-      call build_dof_map(m, order, map0)
+      if (present(ties)) then
+         call build_dof_map(m, order, map0, ties)
+      else
+         call build_dof_map(m, order, map0)
+      end if
       call build_equation_graph(map0, nxadj, nadj, x0, a0)
       call graph_profile(map0%neq, x0, a0, rep%profile_before, rep%mean_before, rep%max_before, status)
       if (.not. status%ok()) return
@@ -89,7 +94,11 @@ contains
       end if
       deallocate (x0, a0)
       call rcm_order(m%npoin, nxadj, nadj, order)
-      call build_dof_map(m, order, map)
+      if (present(ties)) then
+         call build_dof_map(m, order, map, ties)
+      else
+         call build_dof_map(m, order, map)
+      end if
       call build_equation_graph(map, nxadj, nadj, xadj, adjncy)
       call graph_profile(map%neq, xadj, adjncy, rep%profile_after, rep%mean_after, rep%max_after, status)
    end subroutine number_equations
