@@ -27,8 +27,8 @@ module incremental
    use errors, only: status_t, STAT_SINGULAR, STAT_INPUT, STAT_IO, STAT_JACOBIAN, STAT_NO_CONVERGENCE
    use strings, only: itoa, rtoa, strip_extension, basename
    use model, only: model_t, MAX_NODE
-   use dof_map, only: dof_map_t, build_dof_map
-   use graph, only: build_node_graph, build_equation_graph
+   use dof_map, only: dof_map_t
+   use equation_numbering, only: numbering_report_t, number_equations, write_numbering_report
    use linear_solver, only: linear_solver_t
    use solver_factory, only: create_solver
    use assembly, only: coupling_t, assemble_bodies, assemble_load_cases, &
@@ -87,7 +87,8 @@ contains
       class(linear_solver_t), allocatable :: solver
       type(coupling_t) :: coup
       type(results_file_t) :: rf
-      integer, allocatable :: order(:), nxadj(:), nadj(:), xadj(:), adjncy(:), links(:, :), peq(:, :)
+      integer, allocatable :: xadj(:), adjncy(:), links(:, :), peq(:, :)
+      type(numbering_report_t) :: numbering
       real(dp), allocatable :: fcase(:, :, :), ucase(:, :, :), fext(:, :), du(:, :), ddu(:, :), rhs(:), fr(:, :)
       real(dp), allocatable :: dlam(:), carry(:), rvec(:, :), rpred(:, :), kstore(:, :, :), fsp(:, :)
       logical, allocatable :: restrained(:, :), changed(:)
@@ -124,15 +125,14 @@ contains
       end if
       lis_level = m%listing_level
 
-      ! ---- equations (ties share equations), pattern with every pair, K_AB
-      allocate (order(m%npoin), links(2, npair))
-      order = [(ip, ip=1, m%npoin)]
+      ! ---- equations (ties share equations; RCM order for the skyline solver), pattern
+      !      with every contact pair, K_AB
+      allocate (links(2, npair))
       do j = 1, npair
          links(:, j) = [m%contact%pairs(j)%node_a, m%contact%pairs(j)%node_b]
       end do
-      call build_dof_map(m, order, map, m%ties)
-      call build_node_graph(m, links, nxadj, nadj)
-      call build_equation_graph(map, nxadj, nadj, xadj, adjncy)
+      call number_equations(m, solver_name, links, map, xadj, adjncy, numbering, status, ties=m%ties)
+      if (.not. status%ok()) return
       call create_solver(solver_name, solver, status)
       if (.not. status%ok()) then
          status%code = STAT_INPUT
@@ -194,6 +194,7 @@ contains
             return
          end if
          call list_header(lu, m, K2D_VERSION, solver%name(), map%neq, map%nres)
+         call write_numbering_report(lu, numbering)
          if (lis_level == 'FULL') call list_input(lu, m)
       end if
       call rf%create(res%results_path, m, res%gp_start(2:) - res%gp_start(:m%nelem), res%xygp, status)
@@ -210,6 +211,7 @@ contains
       end if
       if (.not. opts%quiet) then
          call list_header(stdout, m, K2D_VERSION, solver%name(), map%neq, map%nres)
+         call write_numbering_report(stdout, numbering)
          write (stdout, '(a)') ' Results      : '//res%results_path
          if (have_lis) write (stdout, '(a)') ' Listing      : '//lis_path
          write (stdout, '(a)') repeat('-', 78)

@@ -97,7 +97,9 @@ module model
       integer, allocatable :: nnode_e(:)     !! nodes of each element
       integer, allocatable :: matno(:)       !! material of each element
       integer, allocatable :: node_line(:)   !! deck line of each node card
-      integer, allocatable :: elem_line(:)   !! deck line of each element card
+      integer, allocatable :: elem_line(:)   !! deck line of each element card (.msh line with a MESH block)
+      integer, allocatable :: node_tag(:)    !! (npoin) gmsh node tags (MESH block); unallocated for deck meshes
+      character(len=:), allocatable :: mesh_file  !! .msh file of a MESH block ('' or unallocated: the deck)
       ! materials, boundary conditions, loads
       type(material_t), allocatable :: mats(:)
       type(restraint_t), allocatable :: fixes(:)
@@ -116,6 +118,8 @@ module model
       type(edge_set_t), allocatable :: edge_sets(:)
       ! output control
       character(len=:), allocatable :: listing_level  !! FULL, SHORT or NONE
+      ! equation numbering: AUTO (RCM for skyline), RCM or NONE (OPTIONS RENUMBER)
+      character(len=:), allocatable :: renumber
    end type model_t
 
 contains
