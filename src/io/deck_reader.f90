@@ -67,6 +67,7 @@ contains
       m%solver_name = 'SKYLINE'
       m%listing_level = 'SHORT'
       m%renumber = 'AUTO'
+      m%condense = 'AUTO'
       allocate (m%fixes(0), m%point_loads(0), m%edge_loads(0), m%body_loads(0), m%mats(0), m%ties(3, 0))
       allocate (m%contact%ifaces(0), m%contact%pairs(0))
       if (.not. loaded) then
@@ -411,6 +412,8 @@ contains
       type(model_t), intent(inout) :: m
       integer :: ic
       logical :: ok
+      real(dp) :: x
+      integer :: iv
       character(len=:), allocatable :: key, val
 
       do while (.not. d%at_end())
@@ -437,9 +440,35 @@ contains
             else if (ok) then
                m%renumber = val
             end if
+         case ('AUTOINC')
+            call d%get_word(ic, 11, 20, 'OPTIONS', 'AUTOINC', val, ok)
+            call d%get_real(ic, 21, 30, 'OPTIONS', 'MINFRAC', x, ok, default=1.0_dp/128.0_dp)
+            call d%get_int(ic, 31, 40, 'OPTIONS', 'NEASY', iv, ok, default=4)
+            if (ok .and. all(val /= [character(len=3) :: 'ON', 'OFF'])) then
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: AUTOINC (columns 11-20) expected ON or OFF, '// &
+                               'found "'//val//'"')
+            else if (ok .and. .not. (x > 0.0_dp .and. x <= 1.0_dp)) then
+               call d%error_at(ic, 21, 'E-OPTION', 'OPTIONS: AUTOINC MINFRAC (columns 21-30) expected the '// &
+                               'smallest step as a fraction of a deck increment, in (0, 1], found '//rtoa(x))
+            else if (ok .and. iv < 1) then
+               call d%error_at(ic, 31, 'E-OPTION', 'OPTIONS: AUTOINC NEASY (columns 31-40) expected a number '// &
+                               'of solutions >= 1, found '//itoa(iv))
+            else if (ok) then
+               m%autoinc = val == 'ON'
+               m%autoinc_min = x
+               m%autoinc_easy = iv
+            end if
+         case ('CONDENSE')
+            call d%get_word(ic, 11, 20, 'OPTIONS', 'CONDENSE', val, ok)
+            if (ok .and. all(val /= [character(len=4) :: 'AUTO', 'ON', 'OFF'])) then
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: CONDENSE (columns 11-20) expected AUTO, ON or OFF, '// &
+                               'found "'//val//'"')
+            else if (ok) then
+               m%condense = val
+            end if
          case default
             call d%error_at(ic, 1, 'E-OPTION', 'OPTIONS: unknown option "'//key//'" (columns 1-10); '// &
-                            'known: LISTING, RENUMBER')
+                            'known: LISTING, RENUMBER, AUTOINC, CONDENSE')
          end select
       end do
    end subroutine read_options

@@ -116,6 +116,12 @@ module model
       ! named sets (from gmsh physical groups or the deck)
       type(node_set_t), allocatable :: node_sets(:)
       type(edge_set_t), allocatable :: edge_sets(:)
+      ! increment control: automatic cutting and growing of the deck's increments
+      logical :: autoinc = .false.
+      real(dp) :: autoinc_min = 1.0_dp/128.0_dp  !! smallest step, as a fraction of a deck increment
+      integer :: autoinc_easy = 4                !! solutions of an easy step (the next may grow)
+      ! condensation of the bodies onto the contact equations: AUTO, ON or OFF
+      character(len=:), allocatable :: condense
       ! output control
       character(len=:), allocatable :: listing_level  !! FULL, SHORT or NONE
       ! equation numbering: AUTO (RCM for skyline), RCM or NONE (OPTIONS RENUMBER)

@@ -97,22 +97,34 @@ contains
       end do
    end subroutine condensed_add_spring
 
-   !> Solve (I + G K_cc) x = wc for the contact part of a solution.
+   !> Solve (I + G K_cc) x = wc for the contact part of a solution (LAPACK
+   !! dgetrf/dgetrs).  A pivot below 1e-12 of its column's largest original
+   !! entry means a singular system (e.g. a body whose springs all opened),
+   !! reported like the skyline solver's zero pivots.
    subroutine condensed_solve_c(this, wc, x, status)
       class(condensed_t), intent(in) :: this
       real(dp), intent(in) :: wc(:)
       real(dp), intent(out) :: x(:)
       type(status_t), intent(inout) :: status
-      real(dp), allocatable :: a(:, :), b(:, :)
+      real(dp), allocatable :: a(:, :), b(:, :), colmax(:)
       integer, allocatable :: ipiv(:)
       integer :: info, k
       interface
-         subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+         subroutine dgetrf(m, n, a, lda, ipiv, info)
             import :: dp
-            integer, intent(in) :: n, nrhs, lda, ldb
-            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(in) :: m, n, lda
+            real(dp), intent(inout) :: a(lda, *)
             integer, intent(out) :: ipiv(*), info
-         end subroutine dgesv
+         end subroutine dgetrf
+         subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: dp
+            character(len=1), intent(in) :: trans
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(dp), intent(in) :: a(lda, *)
+            integer, intent(in) :: ipiv(*)
+            real(dp), intent(inout) :: b(ldb, *)
+            integer, intent(out) :: info
+         end subroutine dgetrs
       end interface
       x = 0.0_dp
       if (this%nc == 0) return
@@ -120,16 +132,24 @@ contains
       do k = 1, this%nc
          a(k, k) = a(k, k) + 1.0_dp
       end do
+      colmax = maxval(abs(a), dim=1)
       allocate (b(this%nc, 1), ipiv(this%nc))
-      b(:, 1) = wc
-      call dgesv(this%nc, 1, a, this%nc, ipiv, b, this%nc, info)
-      if (info /= 0) then
-         if (info > 0) then
-            call status%set(STAT_SINGULAR, 'condensed contact system is singular at contact equation '// &
-                            itoa(this%ceq(info)))
-         else
-            call status%set(STAT_SOLVER, 'LAPACK dgesv: illegal argument '//itoa(-info))
+      call dgetrf(this%nc, this%nc, a, this%nc, ipiv, info)
+      if (info < 0) then
+         call status%set(STAT_SOLVER, 'LAPACK dgetrf: illegal argument '//itoa(-info))
+         return
+      end if
+      do k = 1, this%nc
+         if (abs(a(k, k)) <= 1.0e-12_dp*colmax(k)) then
+            call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%ceq(k))// &
+                            ' of the condensed contact system')
+            return
          end if
+      end do
+      b(:, 1) = wc
+      call dgetrs('N', this%nc, 1, a, this%nc, ipiv, b, this%nc, info)
+      if (info /= 0) then
+         call status%set(STAT_SOLVER, 'LAPACK dgetrs: illegal argument '//itoa(-info))
          return
       end if
       x = b(:, 1)
