@@ -201,10 +201,18 @@ contains
          if (have_lis) close (lu, status='delete')
          return
       end if
-      if (an%has_contact) then
-         call rf%write_contact_definition(m%contact, status)
-         if (.not. status%ok()) return
-      end if
+      block
+         integer :: err
+         err = 0
+         ! the bounds of the automatic increments, with the increments' `cuts` their history
+         call rf%attr_int(rf%fid, 'autoinc', merge(1, 0, m%autoinc), err)
+         call rf%attr_real0(rf%fid, 'autoinc_min_fraction', m%autoinc_min, err)
+         call rf%attr_int(rf%fid, 'autoinc_easy_solutions', m%autoinc_easy, err)
+         call rf%attr_int(rf%fid, 'condensed', merge(1, 0, an%condensed), err)
+         if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the run attributes')
+      end block
+      if (an%has_contact .and. status%ok()) call rf%write_contact_definition(m%contact, status)
+      if (.not. status%ok()) return
       if (.not. opts%quiet) then
          call list_header(stdout, m, K2D_VERSION, an%solver%name(), an%map%neq, an%map%nres)
          call write_numbering_report(stdout, numbering)
