@@ -68,10 +68,8 @@ program kontakt2d
 
    call run_analysis(m, opts, res, status)
    if (.not. status%ok()) then
-      if (status%code == STAT_INPUT) then
-         write (stderr, '(a)') 'kontakt2d: '//status%message
-         call terminate(EXIT_INPUT)
-      end if
+      if (.not. res%reported) write (stderr, '(a)') 'kontakt2d: '//status%message
+      if (status%code == STAT_INPUT) call terminate(EXIT_INPUT)
       call terminate(EXIT_NUMERICAL)
    end if
    call terminate(EXIT_OK)

@@ -4,6 +4,8 @@
 # Installs missing Debian packages, builds (Release) if needed, solves DECK
 # (default: the example deck inputs/lame_cylinder.dat), writes the HDF5 results,
 # the listing and a plot into results/<deck name>/ and says where they are.
+# A deck whose MESH block names a missing .msh gets it made by gmsh from the
+# .geo of the same name beside it.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
 
@@ -13,10 +15,11 @@ if [ ! -f "$deck" ]; then k2d_log "no such deck: $deck"; exit 2; fi
 
 k2d_ensure_packages
 k2d_build Release "$K2D_ROOT/build"
+k2d_mesh_deck "$deck"
 
 name=$(basename "${deck%.*}")
 out="$K2D_ROOT/results/$name"
 mkdir -p "$out"
 "$K2D_ROOT/build/kontakt2d" "$deck" -o "$out/$name.h5" "$@"
 "$K2D_PYTHON" "$K2D_ROOT/tools/plot_results.py" "$out/$name.h5" -o "$out/$name.png"
-echo "results: $out/$name.h5 (HDF5), $out/$name.lis (listing), $out/$name.png (plot)"
+echo "results: $out/$name.h5 (HDF5), $out/$name.xdmf (for ParaView), $out/$name.lis (listing), $out/$name.png (plot)"

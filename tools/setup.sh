@@ -39,3 +39,25 @@ k2d_build() {
   k2d_log "building"
   cmake --build "$dir" -j "$(nproc 2>/dev/null || echo 2)" >&2
 }
+
+# Make the .msh that a deck's MESH block names, when it is missing and a .geo
+# of the same base name lies beside it (gmsh -2 -format msh41).  $1 = deck.
+k2d_mesh_deck() {
+  local deck=$1 dir msh geo
+  dir=$(dirname "$deck")
+  # the GMSH card: keyword in columns 1-10, the path from column 11 (comments dropped)
+  msh=$(sed -n 's/#.*//; /^[Gg][Mm][Ss][Hh] /{s/^.\{10\}//; s/^ *//; s/ *$//; p; q}' "$deck")
+  [ -z "$msh" ] && return 0
+  case "$msh" in /*) ;; *) msh="$dir/$msh" ;; esac
+  [ -f "$msh" ] && return 0
+  geo="${msh%.*}.geo"
+  if [ ! -f "$geo" ]; then
+    k2d_log "the deck's mesh $msh is missing, and there is no $geo to make it from"
+    return 1
+  fi
+  if ! command -v gmsh >/dev/null 2>&1; then
+    k2d_log "gmsh is needed to make $msh from $geo"; return 1
+  fi
+  k2d_log "meshing $geo -> $msh"
+  gmsh -2 -format msh41 "$geo" -o "$msh" >/dev/null
+}

@@ -306,15 +306,10 @@ contains
                md%pa = s%fn/pr%area
                md%uthr = reclose_threshold(ifc, .true., md%ua, md%pa)
                if (.not. returning) then
+                  ! the increment is repeated with the unloading tangent; whether the pair
+                  ! opens is decided with the displacements of that solution, not these
                   md%kn = pr%area*unloading_tangent(max(md%pa, pfloor), ifc%cn2, ifc%m2)
                   fn = s%fn + md%kn*dun
-                  if (fn < 0.0_dp .or. u <= md%uthr) then
-                     md%closed = .false.
-                     md%kn = 0.0_dp
-                     md%tstate = TS_STICK
-                     call set_kt(ifc, md)
-                     fn = 0.0_dp
-                  end if
                else
                   fn = pr%area*normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, .true., md%ua, md%pa)
                end if

@@ -343,6 +343,7 @@ contains
             normal = 0.0_dp
             if (have_b) then
                call surface_edges(m, s%surf(2), ie_b, ik_b, msg)
+               if (len(msg) == 0) call check_listed(s%surf(2), ie_b, ik_b, msg)
                if (len(msg) > 0) then
                   call errors%add('E-SURFACE', 'CONTACT/SURFACE B: '//msg, file=file, line=s%surf(2)%line)
                   cycle
@@ -385,6 +386,12 @@ contains
                   call unique_edge_nodes(ie_a, ik_a, nodes_a)
                else
                   nodes_a = s%surf(1)%nodes
+                  call surface_edges(m, s%surf(1), ie_a, ik_a, msg)
+                  if (len(msg) == 0) call check_listed(s%surf(1), ie_a, ik_a, msg)
+                  if (len(msg) > 0) then
+                     call errors%add('E-SURFACE', 'CONTACT/SURFACE A: '//msg, file=file, line=s%surf(1)%line)
+                     cycle
+                  end if
                end if
                call unique_edge_nodes(ie_b, ik_b, nodes_b)
                if (size(nodes_a) == 0) then
@@ -510,6 +517,29 @@ contains
          type(contact_pair_t), intent(in) :: p
          tol_for = 1.0e-9_dp*size_model + 0.0_dp*p%g0
       end function tol_for
+
+      !> Every node listed for a surface must lie on one of its edges.
+      subroutine check_listed(spec_s, ie, ik, text)
+         type(surface_spec_t), intent(in) :: spec_s
+         integer, intent(in) :: ie(:), ik(:)
+         character(len=:), allocatable, intent(inout) :: text
+         logical :: mark(m%npoin)
+         integer :: q, nd(3), nn, nbad
+         if (allocated(spec_s%set_name)) return
+         mark = .false.
+         do q = 1, size(ie)
+            call edge_nodes(m, ie(q), ik(q), nd, nn)
+            mark(nd(1:nn)) = .true.
+         end do
+         nbad = 0
+         do q = 1, size(spec_s%nodes)
+            if (mark(spec_s%nodes(q))) cycle
+            nbad = nbad + 1
+            if (nbad == 1) text = 'node(s) on no boundary edge formed by the listed nodes (a typo, a node '// &
+                                  'of another body, or an interior node):'
+            if (nbad <= 10) text = text//' '//itoa(spec_s%nodes(q))
+         end do
+      end subroutine check_listed
 
       subroutine unique_edge_nodes(ie, ik, nodes)
          integer, intent(in) :: ie(:), ik(:)

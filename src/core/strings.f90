@@ -40,18 +40,28 @@ contains
       s = trim(b)
    end function itoa
 
-   !> Real as short text (G-format, blanks removed).
+   !> Real as short text (blanks removed), by default in E-notation with six
+   !! significant digits: 1.50000E+00, -2.50000E-03, 1.00000E+100.
+   !! (Plain ES12.5 would drop the letter E of a three-digit exponent and
+   !! print 1.00000+100, which is not a number in a deck.)
    pure function rtoa(x, fmt) result(s)
       real(dp), intent(in) :: x
-      character(len=*), intent(in), optional :: fmt  !! Fortran edit descriptor, default '(es12.5)'
+      character(len=*), intent(in), optional :: fmt  !! Fortran edit descriptor, default ES with E
       character(len=:), allocatable :: s
       character(len=40) :: b
+      integer :: n
       if (present(fmt)) then
          write (b, fmt) x
+         s = trim(adjustl(b))
       else
-         write (b, '(es12.5)') x
+         write (b, '(es14.5e3)') x
+         s = trim(adjustl(b))
+         ! two exponent digits when they suffice: E+005 -> E+05
+         n = len(s)
+         if (n >= 5) then
+            if (s(n - 4:n - 4) == 'E' .and. s(n - 2:n - 2) == '0') s = s(1:n - 3)//s(n - 1:n)
+         end if
       end if
-      s = trim(adjustl(b))
    end function rtoa
 
    !> Last path component.

@@ -23,22 +23,24 @@
 !! A numerical failure stops the loop cleanly: every finished increment stays
 !! in the result file, whose status attribute says what happened.
 module incremental
-   use kinds, only: dp, stdout, stderr
+   use kinds, only: dp, i8, stdout, stderr
    use errors, only: status_t, STAT_SINGULAR, STAT_INPUT, STAT_IO, STAT_JACOBIAN, STAT_NO_CONVERGENCE
    use strings, only: itoa, rtoa, strip_extension, basename
-   use model, only: model_t, MAX_NODE
-   use dof_map, only: dof_map_t, build_dof_map
-   use graph, only: build_node_graph, build_equation_graph
+   use model, only: model_t, MAX_NODE, NTYPE_AXISYMMETRIC
+   use dof_map, only: dof_map_t
+   use equation_numbering, only: numbering_report_t, number_equations, write_numbering_report
    use linear_solver, only: linear_solver_t
    use solver_factory, only: create_solver
    use assembly, only: coupling_t, assemble_bodies, assemble_load_cases, &
                        subtract_prescribed, restrained_forces, element_error
-   use solid2d, only: element_stresses
+   use solid2d, only: element_stresses, element_stiffness
    use quadrature, only: max_gp
    use contact_types, only: UPDATE_RETURN, contact_pair_t
    use contact_algorithm, only: contact_state_t, contact_init, begin_increment, pair_matrix, &
                                 evaluate_pairs, commit_increment, pair_force_vector, law_drift, check_invariants, &
                                 NS_OPEN, NS_LOADING, NS_UNLOADING, TS_SLIP
+   use contact_element, only: spring_stiffness
+   use condensation, only: condensed_t
    use restraint_check, only: find_bodies
    use results_hdf5, only: results_file_t, K2D_VERSION
    use listing, only: list_header, list_input, list_displacements, list_stresses, list_contact
@@ -72,7 +74,39 @@ module incremental
       real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
       integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
       character(len=:), allocatable :: results_path
+      logical :: reported = .false.              !! a failure was already printed
    end type run_result_t
+
+   !> Everything the increment loop works with.
+   type :: analysis_t
+      type(dof_map_t) :: map
+      class(linear_solver_t), allocatable :: solver
+      type(coupling_t) :: coup
+      real(dp), allocatable :: fcase(:, :, :)      !! (2, npoin, ncase) forces at factor 1
+      real(dp), allocatable :: ucase(:, :, :)      !! (2, npoin, ncase) prescribed displacements at factor 1
+      logical, allocatable :: restrained(:, :)     !! (2, npoin)
+      integer :: npair = 0
+      integer, allocatable :: peq(:, :)            !! (4, npair) equations of the pairs' dofs
+      real(dp), allocatable :: kstore(:, :, :)     !! (4, 4, npair) spring matrices of the current system
+      real(dp), allocatable :: kref(:, :, :)       !! (4, 4, npair) reference springs of the condensation
+      logical :: has_contact = .false.
+      logical :: returning = .false.               !! RETURN update (Newton)
+      logical :: modified = .false.                !! modified Newton: stiffness kept within an increment
+      logical :: condensed = .false.               !! bodies condensed onto the contact equations
+      logical :: system_current = .false.          !! the solver holds the factors of the current system
+      type(condensed_t) :: cond
+   end type analysis_t
+
+   !> Outcome of one attempt at an increment (nothing committed yet).
+   type :: attempt_t
+      real(dp), allocatable :: du(:, :)            !! displacement increment
+      real(dp), allocatable :: carry(:)            !! out-of-balance force left, free equations
+      integer :: solutions = 0                     !! linear solutions
+      integer :: repeats = 0                       !! solutions caused by mode changes
+      logical :: converged = .false.
+      logical :: changing = .false.                !! springs still changed their modes at the end
+      real(dp) :: rnorm = 0.0_dp                   !! relative out-of-balance force
+   end type attempt_t
 
 contains
 
@@ -82,31 +116,21 @@ contains
       type(run_options_t), intent(in) :: opts
       type(run_result_t), intent(out) :: res
       type(status_t), intent(inout) :: status
-      type(dof_map_t) :: map
-      class(linear_solver_t), allocatable :: solver
-      type(coupling_t) :: coup
+      type(analysis_t) :: an
+      type(attempt_t) :: att
       type(results_file_t) :: rf
-      integer, allocatable :: order(:), nxadj(:), nadj(:), xadj(:), adjncy(:), links(:, :), peq(:, :)
-      real(dp), allocatable :: fcase(:, :, :), ucase(:, :, :), fext(:, :), du(:, :), ddu(:, :), rhs(:), fr(:, :)
-      real(dp), allocatable :: dlam(:), carry(:), rvec(:, :), rpred(:, :), kstore(:, :, :), fsp(:, :)
-      logical, allocatable :: restrained(:, :), changed(:)
-      integer :: ip, inc, idof, lu, ic, j, iter, nrep, npair
-      logical :: have_lis
-      integer(hid_t) :: gid
-      integer(kind=8) :: t0, t1, rate
-      character(len=:), allocatable :: solver_name, lis_path, lis_level
-      logical :: has_contact, need_factor, converged, returning
-      real(dp) :: fscale, rnorm, gap_tol, force_scale
-      real(dp), allocatable :: ve_old(:)
+      type(numbering_report_t) :: numbering
+      real(dp), allocatable :: fext(:, :), fext_new(:, :), carry(:), dlam(:), ve_old(:)
       integer, allocatable :: body(:)
-      integer :: nbody, nbad
-      character(len=:), allocatable :: imsg
+      integer :: inc, lu, ios, nbody, nstep, cuts, ic
+      integer(i8) :: t0, rate
+      character(len=256) :: iomsg
+      character(len=:), allocatable :: solver_name, lis_path, lis_level
+      logical :: have_lis, first
+      real(dp) :: frac, step, s, force_scale, gap_tol
 
       call system_clock(t0, rate)
       call complete_model(m)
-      has_contact = m%contact%active
-      npair = size(m%contact%pairs)
-      returning = m%contact%opts%update == UPDATE_RETURN
       solver_name = m%solver_name
       if (allocated(opts%solver_name)) then
          if (len(opts%solver_name) > 0) solver_name = opts%solver_name
@@ -121,59 +145,29 @@ contains
       end if
       lis_level = m%listing_level
 
-      ! ---- equations (ties share equations), pattern with every pair, K_AB
-      allocate (order(m%npoin), links(2, npair))
-      order = [(ip, ip=1, m%npoin)]
-      do j = 1, npair
-         links(:, j) = [m%contact%pairs(j)%node_a, m%contact%pairs(j)%node_b]
-      end do
-      call build_dof_map(m, order, map, m%ties)
-      call build_node_graph(m, links, nxadj, nadj)
-      call build_equation_graph(map, nxadj, nadj, xadj, adjncy)
-      call create_solver(solver_name, solver, status)
-      if (.not. status%ok()) then
-         status%code = STAT_INPUT
-         return
-      end if
-      call solver%analyse(map%neq, xadj, adjncy, status)
-      if (.not. status%ok()) return
-      call solver%zero()
-      call assemble_bodies(m, map, solver, coup, status)
-      if (.not. status%ok()) return
-      call solver%store_base()
-      call assemble_load_cases(m, fcase, ucase, status)
+      call set_up(m, solver_name, an, numbering, status)
       if (.not. status%ok()) return
 
-      allocate (restrained(2, m%npoin))
-      restrained = map%id < 0
-      allocate (res%disp(2, m%npoin), res%react(2, m%npoin), fext(2, m%npoin), du(2, m%npoin), &
-                ddu(2, m%npoin), rhs(map%neq), fr(2, m%npoin), dlam(m%ncase), carry(map%neq), fsp(2, m%npoin))
-      allocate (res%iterations(m%nincs), res%repeats(m%nincs), res%residual(m%nincs), res%drift(m%nincs))
-      allocate (res%imbalance(m%nincs), res%violations(m%nincs), ve_old(npair))
-      res%imbalance = 0.0_dp
-      res%violations = 0
-      force_scale = tiny(1.0_dp)
-      res%iterations = 0
-      res%repeats = 0
-      res%residual = 0.0_dp
-      res%drift = 0.0_dp
+      allocate (res%disp(2, m%npoin), res%react(2, m%npoin), fext(2, m%npoin), fext_new(2, m%npoin), &
+                carry(an%map%neq), dlam(m%ncase), ve_old(an%npair))
+      allocate (res%iterations(0), res%repeats(0), res%residual(0), res%drift(0), res%imbalance(0), &
+                res%violations(0))
       res%disp = 0.0_dp
       res%react = 0.0_dp
       fext = 0.0_dp
       carry = 0.0_dp
+      force_scale = tiny(1.0_dp)
 
       ! ---- contact: initial states, start pressure of eq. (4.1)
-      allocate (rvec(4, npair), rpred(4, npair), kstore(4, 4, npair), changed(npair), peq(4, npair))
-      do j = 1, npair
-         peq(:, j) = [map%id(:, m%contact%pairs(j)%node_a), map%id(:, m%contact%pairs(j)%node_b)]
-      end do
       gap_tol = m%contact%opts%gap_tol
       if (gap_tol < 0.0_dp) gap_tol = 1.0e-9_dp*model_size(m)
       call contact_init(m%contact, gap_tol, res%contact)
       allocate (body(m%npoin))
       call find_bodies(m, reshape([integer ::], [2, 0]), body, nbody)
-      if (has_contact) then
-         call start_pressure(m, fcase, m%lambda(:, 1) - m%lambda(:, 0), res%contact, status)
+      if (an%has_contact) then
+         call start_pressure(m, an%fcase, m%lambda(:, 1) - m%lambda(:, 0), res%contact, status)
+         if (.not. status%ok()) return
+         if (an%condensed) call set_up_condensation(m, an, status)
          if (.not. status%ok()) return
       end if
 
@@ -181,214 +175,108 @@ contains
       call recover_stresses(m, res%disp, res%gp_start, res%xygp, res%sig_gp, res%sig_nd, status)
       if (.not. status%ok()) return
 
-      ! ---- result file and listing
-      call rf%create(res%results_path, m, res%gp_start(2:) - res%gp_start(:m%nelem), res%xygp, status)
-      if (.not. status%ok()) return
-      if (has_contact) then
-         call rf%write_contact_definition(m%contact, status)
-         if (.not. status%ok()) return
-      end if
+      ! ---- listing, then the result file (nothing is left behind if either fails)
       have_lis = lis_level /= 'NONE'
       lu = 0
       if (have_lis) then
-         open (newunit=lu, file=lis_path, status='replace', action='write')
-         call list_header(lu, m, K2D_VERSION, solver%name(), map%neq, map%nres)
+         open (newunit=lu, file=lis_path, status='replace', action='write', iostat=ios, iomsg=iomsg)
+         if (ios /= 0) then
+            call status%set(STAT_INPUT, 'cannot open the listing file '//lis_path//': '//trim(iomsg))
+            return
+         end if
+         call list_header(lu, m, K2D_VERSION, an%solver%name(), an%map%neq, an%map%nres)
+         call write_numbering_report(lu, numbering)
+         call write_method(lu, m, an)
          if (lis_level == 'FULL') call list_input(lu, m)
       end if
+      call rf%create(res%results_path, m, res%gp_start(2:) - res%gp_start(:m%nelem), res%xygp, status)
+      if (.not. status%ok()) then
+         ! a result path that cannot be written is a command-line error
+         status%code = STAT_INPUT
+         call rf%close()
+         if (have_lis) close (lu, status='delete')
+         return
+      end if
+      if (an%has_contact) then
+         call rf%write_contact_definition(m%contact, status)
+         if (.not. status%ok()) return
+      end if
       if (.not. opts%quiet) then
-         call list_header(stdout, m, K2D_VERSION, solver%name(), map%neq, map%nres)
+         call list_header(stdout, m, K2D_VERSION, an%solver%name(), an%map%neq, an%map%nres)
+         call write_numbering_report(stdout, numbering)
+         call write_method(stdout, m, an)
          write (stdout, '(a)') ' Results      : '//res%results_path
          if (have_lis) write (stdout, '(a)') ' Listing      : '//lis_path
          write (stdout, '(a)') repeat('-', 78)
-         if (has_contact) then
+         if (an%has_contact) then
             write (stdout, '(a)') '   inc  load factor     max |u|  closed  slip  solves rep   residual    time [s]'
          else
             write (stdout, '(a)') '   inc  load factor     max |u|        sum Rx        sum Ry    time [s]'
          end if
       end if
 
-      ! ---- the loop over increments
-      need_factor = .true.
-      do inc = 1, m%nincs
-         dlam = m%lambda(:, inc) - m%lambda(:, inc - 1)
-         du = 0.0_dp
-         rhs = carry
-         do ic = 1, m%ncase
-            fext = fext + dlam(ic)*fcase(:, :, ic)
-            where (restrained) du = du + dlam(ic)*ucase(:, :, ic)
-         end do
-         do ip = 1, m%npoin
-            do idof = 1, 2
-               if (map%id(idof, ip) > 0) rhs(map%id(idof, ip)) = rhs(map%id(idof, ip)) + sum(dlam*fcase(idof, ip, :))
+      ! ---- the loop over the deck's increments; with AUTOINC each may be cut
+      !      into steps (halved when a step fails, doubled after easy ones)
+      nstep = 0
+      first = .true.
+      step = 1.0_dp
+      deck: do inc = 1, m%nincs
+         frac = 0.0_dp
+         if (.not. m%autoinc) step = 1.0_dp
+         cuts = 0
+         do while (frac < 1.0_dp - 1.0e-12_dp)
+            s = min(step, 1.0_dp - frac)
+            dlam = (m%lambda(:, inc) - m%lambda(:, inc - 1))*s
+            fext_new = fext
+            do ic = 1, m%ncase
+               fext_new = fext_new + dlam(ic)*an%fcase(:, :, ic)
             end do
-         end do
-         call subtract_prescribed(coup, map, du, rhs)
-         fscale = max(maxval(abs(rhs)), maxval(abs(fext)), 1.0e-300_dp)
-
-         ! spring forces at the start of the increment
-         if (has_contact) then
-            call begin_increment(m%contact, res%contact, inc == 1)
-            do j = 1, npair
-               call pair_force_vector(m%contact, j, res%contact%s(j)%fn, res%contact%s(j)%ft, rvec(:, j))
-            end do
-            need_factor = .true.
-         end if
-
-         ! repeat the increment until the springs keep their modes and balance
-         ddu = du           ! first solve: prescribed increments at the restrained dofs
-         nrep = 0
-         converged = .false.
-         do iter = 1, max(1, m%contact%opts%max_repeats)
-            if (need_factor) then
-               call solver%restore_base()
-               do j = 1, npair
-                  call pair_matrix(m%contact, res%contact, j, kstore(:, :, j))
-                  call solver%add_element(peq(:, j), kstore(:, :, j))
-               end do
-               call solver%factorize(status)
-               if (.not. status%ok()) then
-                  if (status%code == STAT_SINGULAR .and. solver%failed_equation() > 0) then
-                     status%message = 'singular or unrestrained model at '// &
-                                      map%describe(solver%failed_equation())//': '//status%message
-                  end if
-                  exit
+            if (first .and. an%has_contact .and. m%contact%opts%p_start <= 0.0_dp) then
+               call start_pressure(m, an%fcase, dlam, res%contact, status)
+               if (.not. status%ok()) exit deck
+            end if
+            call attempt_increment(an, m, res%contact, dlam, carry, fext_new, first, att, status)
+            if (.not. m%autoinc) then
+               if (.not. status%ok()) exit deck
+               call failed_convergence(an, att, res%contact, nstep + 1, status)
+               if (.not. status%ok()) exit deck
+            else if (.not. status%ok() .or. .not. att%converged .or. res%contact%chatter) then
+               ! cut the step and try again from the committed state
+               if (s <= m%autoinc_min*(1.0_dp + 1.0e-9_dp)) then
+                  if (status%ok()) call failed_convergence(an, att, res%contact, nstep + 1, status)
+                  if (status%ok()) call status%set(STAT_NO_CONVERGENCE, 'contact states keep changing in increment '// &
+                                                   itoa(nstep + 1)//' even at the smallest step')
+                  status%message = status%message//' (automatic increments: smallest step '// &
+                                   rtoa(m%autoinc_min)//' of deck increment '//itoa(inc)//' reached)'
+                  exit deck
                end if
-               need_factor = has_contact .and. returning
-            end if
-            if (iter == 1) call subtract_contact_prescribed(peq, kstore, m%contact%pairs, ddu, rhs)
-            call solver%solve(rhs, status)
-            if (.not. status%ok()) exit
-            do ip = 1, m%npoin
-               do idof = 1, 2
-                  if (map%id(idof, ip) > 0) ddu(idof, ip) = rhs(map%id(idof, ip))
-               end do
-            end do
-            du = du + merge(0.0_dp, ddu, restrained)
-            if (.not. has_contact) then
-               converged = .true.
-               exit
-            end if
-            ! predicted spring forces (the linearisation the solve used) ...
-            do j = 1, npair
-               rpred(:, j) = rvec(:, j) + matmul(kstore(:, :, j), pair_values(ddu, m%contact%pairs(j)))
-            end do
-            ! ... against the actual ones, after the mode checks
-            call evaluate_pairs(m%contact, res%contact, du, changed, inc == 1)
-            do j = 1, npair
-               call pair_force_vector(m%contact, j, res%contact%fn(j), res%contact%ft(j), rvec(:, j))
-            end do
-            rhs = 0.0_dp
-            do j = 1, npair
-               call scatter_free(peq(:, j), rpred(:, j) - rvec(:, j), rhs)
-            end do
-            rnorm = 0.0_dp
-            if (map%neq > 0) rnorm = maxval(abs(rhs))/fscale
-            ddu = 0.0_dp
-            if (any(changed)) then
-               nrep = nrep + 1
-               need_factor = .true.
+               status = status_t()
+               step = max(0.5_dp*s, m%autoinc_min)
+               cuts = cuts + 1
+               if (.not. opts%quiet) write (stdout, '(a,i0,a,f9.6)') '      cut: deck increment ', inc, &
+                  ', step fraction ', step
                cycle
             end if
-            if (rnorm <= m%contact%opts%tol_residual) then
-               converged = .true.
-               exit
-            end if
-         end do
-         if (.not. status%ok()) exit
-         res%iterations(inc) = iter
-         if (iter > max(1, m%contact%opts%max_repeats)) res%iterations(inc) = iter - 1
-         res%repeats(inc) = nrep
-         if (has_contact) then
-            res%residual(inc) = rnorm
-            carry = rhs
-            if (.not. converged .and. (returning .or. any(changed))) then
-               if (any(changed)) then
-                  call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
-                                  itoa(res%iterations(inc))//' solutions (contact states keep changing); '// &
-                                  'reduce the increment size or raise CONTACT REPEATS')
-               else
-                  call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
-                                  itoa(res%iterations(inc))//' solutions (relative out-of-balance force '// &
-                                  rtoa(rnorm)//'); reduce the increment size or raise CONTACT REPEATS')
-               end if
-               exit
-            end if
+
+            ! ---- the step is accepted: commit it
+            nstep = nstep + 1
+            frac = frac + s
+            first = .false.
+            fext = fext_new
+            carry = att%carry
             ve_old = res%contact%s%ve
-            call commit_increment(m%contact, res%contact)
-            res%drift(inc) = law_drift(m%contact, res%contact)
-         end if
-         res%disp = res%disp + du
-
-         ! ---- post-processing
-         call recover_stresses(m, res%disp, res%gp_start, res%xygp, res%sig_gp, res%sig_nd, status)
-         if (.not. status%ok()) exit
-         call restrained_forces(coup, map, res%disp, fr)
-         fsp = 0.0_dp
-         do j = 1, npair
-            call pair_force_vector(m%contact, j, res%contact%s(j)%fn, res%contact%s(j)%ft, rvec(:, j))
-            fsp(:, m%contact%pairs(j)%node_a) = fsp(:, m%contact%pairs(j)%node_a) + rvec(1:2, j)
-            fsp(:, m%contact%pairs(j)%node_b) = fsp(:, m%contact%pairs(j)%node_b) + rvec(3:4, j)
+            if (an%has_contact) call commit_increment(m%contact, res%contact)
+            res%disp = res%disp + att%du
+            call record_step(res, att, an%has_contact, m, res%contact)
+            call finish_step(m, an, res, rf, lu, have_lis, lis_level, opts, body, nbody, fext, ve_old, force_scale, &
+                             nstep, inc, frac, cuts, m%lambda(:, inc - 1) + (m%lambda(:, inc) - m%lambda(:, inc - 1))*frac, &
+                             inc == m%nincs .and. frac >= 1.0_dp - 1.0e-12_dp, t0, rate, status)
+            if (.not. status%ok()) exit deck
+            cuts = 0
+            if (m%autoinc .and. att%solutions <= m%autoinc_easy .and. .not. res%contact%chatter) &
+               step = min(1.0_dp, 2.0_dp*step)
          end do
-         res%react = 0.0_dp
-         where (restrained) res%react = fr + fsp - fext
-
-         ! invariants (SPEC §7): every body in equilibrium under loads, reactions
-         ! and spring forces; no tension; |F_T| <= mu F_n; v_e non-decreasing
-         force_scale = max(force_scale, maxval(abs(fext)), maxval(abs(res%react)), maxval(abs(fsp)))
-         res%imbalance(inc) = body_imbalance(body, nbody, fext + res%react - fsp, force_scale, m%ntype == 3)
-         nbad = 0
-         imsg = ''
-         if (has_contact) call check_invariants(res%contact, ve_old, nbad, imsg)
-         if (res%imbalance(inc) > 1.0e-8_dp) then
-            nbad = nbad + 1
-            imsg = 'a body is out of equilibrium by '//rtoa(res%imbalance(inc))//' of the load'
-         end if
-         res%violations(inc) = nbad
-         if (nbad > 0) write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(inc)//': '//itoa(nbad)// &
-            ' invariant violation(s): '//imsg
-
-         call rf%open_increment(inc, m%lambda(:, inc), res%iterations(inc), nrep, converged, gid, status)
-         if (.not. status%ok()) exit
-         block
-            integer :: err
-            err = 0
-            call rf%write_real2(gid, 'displacement', res%disp, err)
-            call rf%write_real2(gid, 'stress_nodal', res%sig_nd, err)
-            call rf%write_real2(gid, 'stress_gauss', res%sig_gp, err)
-            call rf%write_real2(gid, 'reaction', res%react, err)
-            if (has_contact) call rf%attr_real0(gid, 'residual', res%residual(inc), err)
-            if (has_contact) call rf%attr_real0(gid, 'law_drift', res%drift(inc), err)
-            call rf%attr_real0(gid, 'imbalance', res%imbalance(inc), err)
-            call rf%attr_int(gid, 'invariant_violations', res%violations(inc), err)
-            if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(inc))
-         end block
-         if (has_contact .and. status%ok()) call write_contact_results(rf, gid, m, res%contact, status)
-         if (.not. status%ok()) exit
-         call rf%close_increment(gid, status)
-         if (.not. status%ok()) exit
-         res%completed = inc
-
-         if (have_lis .and. (lis_level == 'FULL' .or. inc == m%nincs)) then
-            call list_displacements(lu, m, inc, m%lambda(:, inc), res%disp, res%react, restrained)
-            if (has_contact) call list_contact(lu, m%contact, res%contact, res%iterations(inc), nrep, &
-                                               res%residual(inc), res%drift(inc))
-            call list_stresses(lu, m, res%gp_start, res%xygp, res%sig_gp)
-         end if
-         call system_clock(t1)
-         if (.not. opts%quiet) then
-            if (has_contact) then
-               write (stdout, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') inc, maxval(abs(m%lambda(:, inc))), &
-                  maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), count(res%contact%s%closed), &
-                  count(res%contact%s%closed .and. res%contact%s%tstate == TS_SLIP), res%iterations(inc), nrep, &
-                  res%residual(inc), real(t1 - t0, dp)/real(rate, dp)
-            else
-               write (stdout, '(i6, f13.5, 3es14.5, f12.3)') inc, maxval(abs(m%lambda(:, inc))), &
-                  maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), sum(res%react(1, :)), &
-                  sum(res%react(2, :)), real(t1 - t0, dp)/real(rate, dp)
-            end if
-            flush (stdout)
-         end if
-      end do
+      end do deck
 
       if (status%ok()) then
          call rf%set_status('completed')
@@ -398,19 +286,525 @@ contains
          end if
       else
          call rf%set_status('failed at increment '//itoa(res%completed + 1)//': '//status%message)
+         res%reported = .true.
          write (stderr, '(a)') 'kontakt2d: increment '//itoa(res%completed + 1)//' failed: '//status%message
          write (stderr, '(a)') 'kontakt2d: '//itoa(res%completed)//' completed increment(s) are kept in '// &
             res%results_path
       end if
       call rf%close()
       if (have_lis) close (lu)
-      call solver%free()
+      call an%solver%free()
    end subroutine run_analysis
+
+   !> Equations, solver, K_AB and the load vectors; the contact pairs' equations.
+   subroutine set_up(m, solver_name, an, numbering, status)
+      type(model_t), intent(inout) :: m
+      character(len=*), intent(in) :: solver_name
+      type(analysis_t), intent(inout) :: an
+      type(numbering_report_t), intent(out) :: numbering
+      type(status_t), intent(inout) :: status
+      integer, allocatable :: xadj(:), adjncy(:), links(:, :)
+      integer :: j
+
+      an%has_contact = m%contact%active
+      an%npair = size(m%contact%pairs)
+      an%returning = m%contact%opts%update == UPDATE_RETURN
+      an%modified = an%returning .and. m%contact%opts%modified
+
+      ! equations (ties share equations; RCM order for the skyline solver), pattern
+      ! with every contact pair, K_AB
+      allocate (links(2, an%npair))
+      do j = 1, an%npair
+         links(:, j) = [m%contact%pairs(j)%node_a, m%contact%pairs(j)%node_b]
+      end do
+      call number_equations(m, solver_name, links, an%map, xadj, adjncy, numbering, status, ties=m%ties)
+      if (.not. status%ok()) return
+      call create_solver(solver_name, an%solver, status)
+      if (.not. status%ok()) then
+         status%code = STAT_INPUT
+         return
+      end if
+      call an%solver%analyse(an%map%neq, xadj, adjncy, status)
+      if (.not. status%ok()) return
+      call an%solver%zero()
+      call assemble_bodies(m, an%map, an%solver, an%coup, status)
+      if (.not. status%ok()) return
+      call an%solver%store_base()
+      call assemble_load_cases(m, an%fcase, an%ucase, status)
+      if (.not. status%ok()) return
+      allocate (an%restrained(2, m%npoin))
+      an%restrained = an%map%id < 0
+      allocate (an%peq(4, an%npair), an%kstore(4, 4, an%npair))
+      an%kstore = 0.0_dp
+      do j = 1, an%npair
+         an%peq(:, j) = [an%map%id(:, m%contact%pairs(j)%node_a), an%map%id(:, m%contact%pairs(j)%node_b)]
+      end do
+      an%condensed = .false.
+      if (an%has_contact) then
+         select case (m%condense)
+         case ('ON')
+            an%condensed = .true.
+         case ('AUTO')
+            an%condensed = count_contact_equations(an) <= 1500
+         end select
+      end if
+   end subroutine set_up
+
+   !> Number of distinct free equations of the contact pairs.
+   integer function count_contact_equations(an) result(nc)
+      type(analysis_t), intent(in) :: an
+      integer, allocatable :: c(:)
+      call contact_equations(an, c)
+      nc = size(c)
+   end function count_contact_equations
+
+   !> The distinct free equations of the contact pairs, sorted.
+   subroutine contact_equations(an, c)
+      type(analysis_t), intent(in) :: an
+      integer, allocatable, intent(out) :: c(:)
+      logical, allocatable :: mark(:)
+      integer :: j, k
+      allocate (mark(an%map%neq))
+      mark = .false.
+      do j = 1, an%npair
+         do k = 1, 4
+            if (an%peq(k, j) > 0) mark(an%peq(k, j)) = .true.
+         end do
+      end do
+      c = pack([(k, k=1, an%map%neq)], mark)
+   end subroutine contact_equations
+
+   !> Factorize B = K_AB + K_ref once and condense it onto the contact
+   !! equations.  K_ref gives every pair a spring of the bodies' own stiffness
+   !! scale in both directions, so that B is regular even where the springs are
+   !! the only support of a body; each solve then uses the change K_c - K_ref,
+   !! which acts on the contact equations only.
+   subroutine set_up_condensation(m, an, status)
+      type(model_t), intent(in) :: m
+      type(analysis_t), intent(inout) :: an
+      type(status_t), intent(inout) :: status
+      integer, allocatable :: c(:)
+      real(dp), allocatable :: diag(:)
+      real(dp) :: kref
+      integer :: j, k, n
+      ! the bodies' stiffness scale at each contact equation: K_AB's diagonal
+      allocate (diag(an%map%neq))
+      call an%solver%restore_base()
+      call body_diagonal(m, an, diag)
+      allocate (an%kref(4, 4, an%npair))
+      do j = 1, an%npair
+         kref = 0.0_dp
+         n = 0
+         do k = 1, 4
+            if (an%peq(k, j) <= 0) cycle
+            kref = kref + diag(an%peq(k, j))
+            n = n + 1
+         end do
+         kref = 0.1_dp*kref/max(n, 1)
+         call spring_matrix_iso(m%contact%pairs(j)%t, m%contact%pairs(j)%n, kref, an%kref(:, :, j))
+         call an%solver%add_element(an%peq(:, j), an%kref(:, :, j))
+      end do
+      call an%solver%factorize(status)
+      if (.not. status%ok()) then
+         status%message = 'condensation: the bodies with reference springs are singular ('//status%message// &
+                          '); check the restraints'
+         return
+      end if
+      call contact_equations(an, c)
+      call an%cond%setup(an%solver, an%map%neq, c, status)
+   end subroutine set_up_condensation
+
+   !> Diagonal of K_AB on the free equations (element by element).
+   subroutine body_diagonal(m, an, diag)
+      type(model_t), intent(in) :: m
+      type(analysis_t), intent(in) :: an
+      real(dp), intent(out) :: diag(:)
+      real(dp) :: estif(2*MAX_NODE, 2*MAX_NODE), elcod(2, MAX_NODE)
+      integer :: ie, nn, ierr, k, ieq, imat
+      diag = 0.0_dp
+      do ie = 1, m%nelem
+         nn = m%nnode_e(ie)
+         imat = m%matno(ie)
+         elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
+         call element_stiffness(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
+                                m%mats(imat)%thick, m%ngaus, estif(1:2*nn, 1:2*nn), ierr)
+         do k = 1, 2*nn
+            ieq = an%map%id(mod(k - 1, 2) + 1, m%lnods((k + 1)/2, ie))
+            if (ieq > 0) diag(ieq) = diag(ieq) + estif(k, k)
+         end do
+      end do
+   end subroutine body_diagonal
+
+   !> A spring of stiffness k in both the normal and the tangential direction.
+   pure subroutine spring_matrix_iso(t, n, k, ke)
+      real(dp), intent(in) :: t(2), n(2), k
+      real(dp), intent(out) :: ke(4, 4)
+      call spring_stiffness(t, n, k, k, ke)
+   end subroutine spring_matrix_iso
+
+   !> One attempt at an increment of the load factors dlam from the committed
+   !! state: solve, check the springs, repeat until they keep their modes and
+   !! balance (or the cap).  Nothing is committed here.
+   subroutine attempt_increment(an, m, st, dlam, carry, fext_new, first, att, status)
+      type(analysis_t), intent(inout) :: an
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(inout) :: st
+      real(dp), intent(in) :: dlam(:), carry(:), fext_new(:, :)
+      logical, intent(in) :: first
+      type(attempt_t), intent(inout) :: att
+      type(status_t), intent(inout) :: status
+      real(dp), allocatable :: rhs(:), ddu(:, :), rvec(:, :), rpred(:, :), w1(:), wc(:), dvc(:), zc(:), rsum(:)
+      logical, allocatable :: changed(:)
+      integer :: ip, idof, ic, j, iter, maxit
+      real(dp) :: fscale, dnorm
+      logical :: need_matrix
+
+      allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(4, an%npair), rpred(4, an%npair), changed(an%npair))
+      if (.not. allocated(att%du)) allocate (att%du(2, m%npoin), att%carry(an%map%neq))
+      att%du = 0.0_dp
+      att%solutions = 0
+      att%repeats = 0
+      att%converged = .false.
+      att%changing = .false.
+      att%rnorm = 0.0_dp
+      st%chatter = .false.
+      rhs = carry
+      do ic = 1, m%ncase
+         where (an%restrained) att%du = att%du + dlam(ic)*an%ucase(:, :, ic)
+      end do
+      do ip = 1, m%npoin
+         do idof = 1, 2
+            if (an%map%id(idof, ip) > 0) rhs(an%map%id(idof, ip)) = rhs(an%map%id(idof, ip)) + &
+                                                                   sum(dlam*an%fcase(idof, ip, :))
+         end do
+      end do
+      call subtract_prescribed(an%coup, an%map, att%du, rhs)
+      fscale = max(maxval([0.0_dp, abs(rhs)]), maxval(abs(fext_new)), 1.0e-300_dp)
+
+      ! spring forces and modes at the start of the increment
+      if (an%has_contact) then
+         call begin_increment(m%contact, st, first)
+         do j = 1, an%npair
+            call pair_force_vector(m%contact, j, st%s(j)%fn, st%s(j)%ft, rvec(:, j))
+         end do
+      end if
+      if (an%condensed) then
+         allocate (wc(an%cond%nc), dvc(an%cond%nc), zc(an%cond%nc), rsum(an%cond%nc))
+         zc = 0.0_dp
+         rsum = 0.0_dp
+      end if
+
+      ddu = att%du       ! first solve: prescribed increments at the restrained dofs
+      need_matrix = an%has_contact .or. .not. an%system_current
+      maxit = 1
+      if (an%has_contact) maxit = max(1, m%contact%opts%max_repeats)
+      do iter = 1, maxit
+         if (need_matrix) then
+            call set_system(an, m, st, status)
+            if (.not. status%ok()) return
+         end if
+         if (iter == 1) call subtract_contact_prescribed(an%peq, an%kstore, m%contact%pairs, ddu, rhs)
+         if (an%condensed) then
+            ! (B + dK) dv = b with dK = K_c - K_ref on the contact equations only
+            if (iter == 1) then
+               w1 = rhs
+               call an%solver%solve(w1, status)
+               if (.not. status%ok()) return
+               wc = w1(an%cond%ceq)
+            else
+               wc = matmul(an%cond%g, rhs(an%cond%ceq))
+               rsum = rsum + rhs(an%cond%ceq)
+            end if
+            call an%cond%solve_c(wc, dvc, status)
+            if (.not. status%ok()) then
+               call describe_singular(an, status)
+               return
+            end if
+            zc = zc + matmul(an%cond%kcc, dvc)
+            ! the contact part of the solution at the pairs' nodes (only these are needed now)
+            do j = 1, an%npair
+               do idof = 1, 4
+                  if (an%peq(idof, j) <= 0) cycle
+                  ip = merge(m%contact%pairs(j)%node_a, m%contact%pairs(j)%node_b, idof <= 2)
+                  ddu(mod(idof - 1, 2) + 1, ip) = dvc(an%cond%pos(an%peq(idof, j)))
+               end do
+            end do
+         else
+            call an%solver%solve(rhs, status)
+            if (.not. status%ok()) return
+            do ip = 1, m%npoin
+               do idof = 1, 2
+                  if (an%map%id(idof, ip) > 0) ddu(idof, ip) = rhs(an%map%id(idof, ip))
+               end do
+            end do
+         end if
+         att%solutions = iter
+         att%du = att%du + merge(0.0_dp, ddu, an%restrained)
+         if (.not. an%has_contact) then
+            att%converged = .true.
+            rhs = 0.0_dp         ! it held the solution: no out-of-balance force is left
+            exit
+         end if
+         ! predicted spring forces (the linearisation the solve used) ...
+         do j = 1, an%npair
+            rpred(:, j) = rvec(:, j) + matmul(an%kstore(:, :, j), pair_values(ddu, m%contact%pairs(j)))
+         end do
+         ! ... against the actual ones, after the mode checks
+         call evaluate_pairs(m%contact, st, att%du, changed, first)
+         do j = 1, an%npair
+            call pair_force_vector(m%contact, j, st%fn(j), st%ft(j), rvec(:, j))
+         end do
+         rhs = 0.0_dp
+         do j = 1, an%npair
+            call scatter_free(an%peq(:, j), rpred(:, j) - rvec(:, j), rhs)
+         end do
+         att%rnorm = 0.0_dp
+         if (an%map%neq > 0) att%rnorm = maxval(abs(rhs))/fscale
+         dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/max(maxval(abs(att%du)), tiny(1.0_dp))
+         ddu = 0.0_dp
+         att%changing = any(changed)
+         if (att%changing) then
+            att%repeats = att%repeats + 1
+            need_matrix = .true.
+            cycle
+         end if
+         if (att%rnorm <= m%contact%opts%tol_residual .and. &
+             (.not. an%returning .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
+            att%converged = .true.
+            exit
+         end if
+         need_matrix = an%returning .and. .not. an%modified
+      end do
+      att%carry = rhs
+
+      ! condensed path: the full-length displacement increment from one more solve
+      if (an%condensed .and. an%has_contact) then
+         rhs = 0.0_dp
+         rhs(an%cond%ceq) = rsum - zc
+         call an%solver%solve(rhs, status)
+         if (.not. status%ok()) return
+         rhs = w1 + rhs
+         do ip = 1, m%npoin
+            do idof = 1, 2
+               if (an%map%id(idof, ip) > 0) att%du(idof, ip) = rhs(an%map%id(idof, ip))
+            end do
+         end do
+      end if
+   end subroutine attempt_increment
+
+   !> Put the springs of the current modes into the system: refactorize
+   !! K_AB + K_c, or, when condensed, assemble K_c - K_ref on the contact equations.
+   subroutine set_system(an, m, st, status)
+      type(analysis_t), intent(inout) :: an
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(in) :: st
+      type(status_t), intent(inout) :: status
+      integer :: j
+      do j = 1, an%npair
+         call pair_matrix(m%contact, st, j, an%kstore(:, :, j))
+      end do
+      if (an%condensed) then
+         call an%cond%zero_springs()
+         do j = 1, an%npair
+            call an%cond%add_spring(an%peq(:, j), an%kstore(:, :, j) - an%kref(:, :, j))
+         end do
+         return
+      end if
+      call an%solver%restore_base()
+      do j = 1, an%npair
+         call an%solver%add_element(an%peq(:, j), an%kstore(:, :, j))
+      end do
+      call an%solver%factorize(status)
+      an%system_current = status%ok()
+      if (.not. status%ok()) call describe_singular(an, status)
+   end subroutine set_system
+
+   !> Name the node and dof of a singular equation in the message.
+   subroutine describe_singular(an, status)
+      type(analysis_t), intent(in) :: an
+      type(status_t), intent(inout) :: status
+      integer :: ieq, k
+      character(len=:), allocatable :: detail
+      if (status%code /= STAT_SINGULAR) return
+      ieq = 0
+      if (an%condensed) then
+         k = index(status%message, 'contact equation ')
+         if (k > 0) read (status%message(k + 17:), *) ieq
+      else
+         ieq = an%solver%failed_equation()
+      end if
+      if (ieq <= 0) return
+      ! keep the solver's pivot figures, name the node and dof instead of the equation
+      k = index(status%message, ': ')
+      detail = status%message(k + 1:)
+      if (k > 0) detail = status%message(k + 2:)
+      status%message = 'singular or unrestrained model at '//an%map%describe(ieq)//': '//detail
+      if (an%has_contact) status%message = status%message//'; a body held only by contact '// &
+                                           'springs has no support once they open'
+   end subroutine describe_singular
+
+   !> An attempt that ended without convergence: a RETURN increment out of
+   !! balance, or springs still changing their modes, is a failure; an EXPLICIT
+   !! increment whose slip forces have not settled is accepted (its
+   !! out-of-balance force is carried into the next increment).
+   subroutine failed_convergence(an, att, st, inc, status)
+      type(analysis_t), intent(in) :: an
+      type(attempt_t), intent(in) :: att
+      type(contact_state_t), intent(in) :: st
+      integer, intent(in) :: inc
+      type(status_t), intent(inout) :: status
+      if (.not. an%has_contact .or. att%converged) return
+      if (att%changing .or. st%chatter) then
+         call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
+                         itoa(att%solutions)//' solutions (contact states keep changing); '// &
+                         'reduce the increment size, raise CONTACT REPEATS or use OPTIONS AUTOINC')
+      else if (an%returning) then
+         call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
+                         itoa(att%solutions)//' solutions (relative out-of-balance force '// &
+                         rtoa(att%rnorm)//'); reduce the increment size, raise CONTACT REPEATS or use '// &
+                         'OPTIONS AUTOINC')
+      end if
+   end subroutine failed_convergence
+
+   !> Append the figures of an accepted step.
+   subroutine record_step(res, att, has_contact, m, st)
+      type(run_result_t), intent(inout) :: res
+      type(attempt_t), intent(in) :: att
+      logical, intent(in) :: has_contact
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(in) :: st
+      res%iterations = [res%iterations, att%solutions]
+      res%repeats = [res%repeats, att%repeats]
+      res%residual = [res%residual, merge(att%rnorm, 0.0_dp, has_contact)]
+      if (has_contact) then
+         res%drift = [res%drift, law_drift(m%contact, st)]
+      else
+         res%drift = [res%drift, 0.0_dp]
+      end if
+   end subroutine record_step
+
+   !> Post-processing, checks, output and progress of an accepted step.
+   subroutine finish_step(m, an, res, rf, lu, have_lis, lis_level, opts, body, nbody, fext, ve_old, force_scale, &
+                          nstep, inc, frac, cuts, lambda, last, t0, rate, status)
+      type(model_t), intent(in) :: m
+      type(analysis_t), intent(in) :: an
+      type(run_result_t), intent(inout) :: res
+      type(results_file_t), intent(inout) :: rf
+      integer, intent(in) :: lu
+      logical, intent(in) :: have_lis
+      character(len=*), intent(in) :: lis_level
+      type(run_options_t), intent(in) :: opts
+      integer, intent(in) :: body(:), nbody
+      real(dp), intent(in) :: fext(:, :), ve_old(:)
+      real(dp), intent(inout) :: force_scale
+      integer, intent(in) :: nstep, inc, cuts
+      real(dp), intent(in) :: frac, lambda(:)
+      logical, intent(in) :: last
+      integer(i8), intent(in) :: t0, rate
+      type(status_t), intent(inout) :: status
+      real(dp), allocatable :: fr(:, :), fsp(:, :)
+      real(dp) :: r(4), imb
+      integer :: j, nbad, err
+      integer(i8) :: t1
+      integer(hid_t) :: gid
+      character(len=:), allocatable :: imsg
+
+      call recover_stresses(m, res%disp, res%gp_start, res%xygp, res%sig_gp, res%sig_nd, status)
+      if (.not. status%ok()) return
+      allocate (fr(2, m%npoin), fsp(2, m%npoin))
+      call restrained_forces(an%coup, an%map, res%disp, fr)
+      fsp = 0.0_dp
+      do j = 1, an%npair
+         call pair_force_vector(m%contact, j, res%contact%s(j)%fn, res%contact%s(j)%ft, r)
+         fsp(:, m%contact%pairs(j)%node_a) = fsp(:, m%contact%pairs(j)%node_a) + r(1:2)
+         fsp(:, m%contact%pairs(j)%node_b) = fsp(:, m%contact%pairs(j)%node_b) + r(3:4)
+      end do
+      res%react = 0.0_dp
+      where (an%restrained) res%react = fr + fsp - fext
+
+      ! invariants (SPEC §7): every body in equilibrium under loads, reactions
+      ! and spring forces; no tension; |F_T| <= mu F_n; v_e non-decreasing
+      force_scale = max(force_scale, maxval(abs(fext)), maxval(abs(res%react)), maxval(abs(fsp)))
+      imb = body_imbalance(body, nbody, fext + res%react - fsp, force_scale, m%ntype == NTYPE_AXISYMMETRIC)
+      nbad = 0
+      imsg = ''
+      if (an%has_contact) call check_invariants(res%contact, ve_old, nbad, imsg)
+      if (imb > 1.0e-8_dp) then
+         nbad = nbad + 1
+         imsg = 'a body is out of equilibrium by '//rtoa(imb)//' of the load'
+      end if
+      res%imbalance = [res%imbalance, imb]
+      res%violations = [res%violations, nbad]
+      if (nbad > 0) write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(nstep)//': '//itoa(nbad)// &
+         ' invariant violation(s): '//imsg
+
+      call rf%open_increment(nstep, lambda, res%iterations(nstep), res%repeats(nstep), .true., gid, status)
+      if (.not. status%ok()) return
+      err = 0
+      call rf%write_real2(gid, 'displacement', res%disp, err)
+      call rf%write_real2(gid, 'stress_nodal', res%sig_nd, err)
+      call rf%write_real2(gid, 'stress_gauss', res%sig_gp, err)
+      call rf%write_real2(gid, 'reaction', res%react, err)
+      if (an%has_contact) call rf%attr_real0(gid, 'residual', res%residual(nstep), err)
+      if (an%has_contact) call rf%attr_real0(gid, 'law_drift', res%drift(nstep), err)
+      call rf%attr_real0(gid, 'imbalance', imb, err)
+      call rf%attr_int(gid, 'invariant_violations', nbad, err)
+      call rf%attr_int(gid, 'deck_increment', inc, err)
+      call rf%attr_real0(gid, 'deck_increment_fraction', frac, err)
+      call rf%attr_int(gid, 'cuts', cuts, err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(nstep))
+      if (an%has_contact .and. status%ok()) call write_contact_results(rf, gid, m, res%contact, status)
+      if (.not. status%ok()) return
+      call rf%close_increment(gid, status)
+      if (.not. status%ok()) return
+      res%completed = nstep
+
+      if (have_lis .and. (lis_level == 'FULL' .or. last)) then
+         call list_displacements(lu, m, nstep, lambda, res%disp, res%react, an%restrained)
+         if (an%has_contact) call list_contact(lu, m%contact, res%contact, res%iterations(nstep), &
+                                               res%repeats(nstep), res%residual(nstep), res%drift(nstep))
+         call list_stresses(lu, m, res%gp_start, res%xygp, res%sig_gp)
+      end if
+      call system_clock(t1)
+      if (.not. opts%quiet) then
+         if (an%has_contact) then
+            write (stdout, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') nstep, maxval(abs(lambda)), &
+               maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), count(res%contact%s%closed), &
+               count(res%contact%s%closed .and. res%contact%s%tstate == TS_SLIP), res%iterations(nstep), &
+               res%repeats(nstep), res%residual(nstep), real(t1 - t0, dp)/real(rate, dp)
+         else
+            write (stdout, '(i6, f13.5, 3es14.5, f12.3)') nstep, maxval(abs(lambda)), &
+               maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), sum(res%react(1, :)), &
+               sum(res%react(2, :)), real(t1 - t0, dp)/real(rate, dp)
+         end if
+         flush (stdout)
+      end if
+   end subroutine finish_step
+
+   !> The method in use, for the header of the listing and the terminal.
+   subroutine write_method(u, m, an)
+      integer, intent(in) :: u
+      type(model_t), intent(in) :: m
+      type(analysis_t), intent(in) :: an
+      character(len=:), allocatable :: s
+      if (.not. an%has_contact) return
+      if (.not. an%returning) then
+         s = 'incremental (the paper: explicit update, repeats on state changes)'
+      else if (an%modified) then
+         s = 'modified Newton (return to the laws, stiffness kept)'
+      else
+         s = 'Newton (return to the laws, tangent every solution)'
+      end if
+      write (u, '(a)') ' Contact      : '//itoa(an%npair)//' pairs, '//s
+      if (an%condensed) write (u, '(a)') ' Condensed    : bodies condensed onto '//itoa(an%cond%nc)// &
+         ' contact equations (one factorization of the bodies)'
+      if (m%autoinc) write (u, '(a)') ' Increments   : automatic (cut on failure or chatter, smallest step '// &
+         rtoa(m%autoinc_min)//' of a deck increment)'
+   end subroutine write_method
 
    !> Largest |sum of the forces on a body| relative to the force scale of the run.
    !! In axisymmetry only the axial resultant must vanish: the radial ring forces
-   !! of a body in equilibrium do not add up to zero (its hoop stresses carry them),
-   !! so the radial component is not an equilibrium condition of the body.
+   !! of a body in equilibrium do not add up to zero (its hoop stresses carry them).
    pure real(dp) function body_imbalance(body, nbody, f, scale, axisymmetric) result(worst)
       integer, intent(in) :: body(:), nbody
       real(dp), intent(in) :: f(:, :)        !! (2, npoin) external + reactions - spring internal forces

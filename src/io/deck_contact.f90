@@ -298,15 +298,36 @@ contains
          case ('PAIRS')
             call need_interface(ic)
             mode = 2
-         case ('UPDATE')
-            call d%get_word(ic, 11, 20, 'CONTACT/UPDATE', 'UPDATE', w, ok)
-            if (w == 'EXPLICIT') then
+         case ('UPDATE', 'SCHEME')
+            ! SCHEME INCREMENTAL (the paper) = UPDATE EXPLICIT; SCHEME NEWTON = UPDATE RETURN;
+            ! SCHEME MODIFIED = RETURN with the stiffness kept (modified Newton)
+            call d%get_word(ic, 11, 20, 'CONTACT/'//key, key, w, ok)
+            select case (w)
+            case ('EXPLICIT', 'INCREMENTA')
                m%contact%opts%update = UPDATE_EXPLICIT
-            else if (w == 'RETURN') then
+               m%contact%opts%modified = .false.
+            case ('RETURN', 'NEWTON')
                m%contact%opts%update = UPDATE_RETURN
-            else if (ok) then
-               call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/UPDATE (columns 11-20) expected EXPLICIT or RETURN, '// &
-                               'found "'//w//'"')
+               m%contact%opts%modified = .false.
+            case ('MODIFIED')
+               m%contact%opts%update = UPDATE_RETURN
+               m%contact%opts%modified = .true.
+            case default
+               if (ok) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/'//key//' (columns 11-20) expected '// &
+                                       'INCREMENTAL (or EXPLICIT), NEWTON (or RETURN) or MODIFIED, found "'//w//'"')
+            end select
+         case ('CONVERGE')
+            call d%get_real(ic, 11, 20, 'CONTACT/CONVERGE', 'TOLR', v1, ok, default=1.0e-10_dp)
+            call d%get_real(ic, 21, 30, 'CONTACT/CONVERGE', 'TOLU', v2, ok, default=1.0e-8_dp)
+            call tail(ic, 31, 'TOLR, TOLU in columns 11-30', ok)
+            if (ok .and. .not. (v1 > 0.0_dp .and. v1 < 1.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', &
+                   'CONTACT/CONVERGE: TOLR (columns 11-20) expected a relative force tolerance in (0, 1), found '//rtoa(v1))
+            if (ok .and. .not. (v2 > 0.0_dp .and. v2 < 1.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', &
+                   'CONTACT/CONVERGE: TOLU (columns 21-30) expected a relative displacement tolerance in (0, 1), found '// &
+                   rtoa(v2))
+            if (ok) then
+               m%contact%opts%tol_residual = v1
+               m%contact%opts%tol_displacement = v2
             end if
          case ('FIRSTINC')
             call d%get_word(ic, 11, 20, 'CONTACT/FIRSTINC', 'RULE', w, ok)
@@ -342,8 +363,8 @@ contains
             end if
          case default
             call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT: unknown keyword "'//key//'" (expected INTERFACE, LAW, '// &
-                            'UNITS, NORMAL, TANGENT, FRICTION, HARDENING, SLIP, SURFACE, PAIRS, TOLERANCE, UPDATE, '// &
-                            'FIRSTINC, REPEATS or START)')
+                            'UNITS, NORMAL, TANGENT, FRICTION, HARDENING, SLIP, SURFACE, PAIRS, TOLERANCE, SCHEME, '// &
+                            'UPDATE, CONVERGE, FIRSTINC, REPEATS or START)')
          end select
       end do
 

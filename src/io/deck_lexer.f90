@@ -8,6 +8,8 @@
 !! which validate the text themselves instead of trusting a Fortran `read`
 !! (which would silently accept "1 2" as 12 or stop the program on "abc").
 module deck_lexer
+   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
+                                            ieee_set_flag
    use kinds, only: dp
    use errors, only: error_list_t
    use strings, only: upper, itoa
@@ -266,6 +268,7 @@ contains
       real(dp), intent(in), optional :: default
       character(len=:), allocatable :: f
       integer :: ios
+      logical :: halt
 
       val = 0.0_dp
       f = trim(adjustl(this%field_text(ic, c1, c2)))
@@ -285,7 +288,14 @@ contains
          ok = .false.
          return
       end if
+      ! A literal beyond the range of real(dp) overflows inside the conversion;
+      ! with overflow trapping on (Debug builds) that would stop the program
+      ! before the range check below could report it as an input error.
+      call ieee_get_halting_mode(ieee_overflow, halt)
+      if (halt) call ieee_set_halting_mode(ieee_overflow, .false.)
       read (f, *, iostat=ios) val
+      call ieee_set_flag(ieee_overflow, .false.)
+      if (halt) call ieee_set_halting_mode(ieee_overflow, .true.)
       if (ios /= 0 .or. .not. (abs(val) <= huge(val))) then
          call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
                             itoa(c1)//'-'//itoa(c2)//') real number out of range: "'//f//'"')

@@ -23,22 +23,27 @@ module deck_reader
    use solid2d, only: min_jacobian
    use restraint_check, only: unrestrained_bodies
    use deck_contact, only: read_ties, read_contact
+   use mesh_block, only: read_mesh_block
+   use group_cards, only: is_group_card, read_group_restraint, read_group_point_load, read_group_edge_load, &
+                          check_restraint_overlaps
    implicit none
    private
 
    public :: read_deck, block_order
 
    !> Block keywords in their required order.
-   character(len=10), parameter :: block_order(12) = [character(len=10) :: &
-                                   'TITLE', 'CONTROL', 'OPTIONS', 'ELEMENTS', 'NODES', &
+   character(len=10), parameter :: block_order(13) = [character(len=10) :: &
+                                   'TITLE', 'CONTROL', 'OPTIONS', 'MESH', 'ELEMENTS', 'NODES', &
                                    'RESTRAINTS', 'TIES', 'MATERIALS', 'LOADS', 'CONTACT', 'INCREMENTS', 'END']
-   logical, parameter :: block_required(12) = [.true., .true., .false., .true., .true., &
+   !> ELEMENTS and NODES are not required when a MESH block gives the mesh (see `required`).
+   logical, parameter :: block_required(13) = [.true., .true., .false., .false., .true., .true., &
                                                .true., .false., .true., .false., .false., .false., .true.]
 
    !> Counts declared on the control card, needed by later blocks.
    type :: control_t
       integer :: nvfix = 0
       logical :: ok = .false.
+      logical :: counts_from_mesh = .false.   !! NPOIN = NELEM = 0: a MESH block must give the mesh
       integer :: line = 0
    end type control_t
 
@@ -61,6 +66,8 @@ contains
       m%title = ''
       m%solver_name = 'SKYLINE'
       m%listing_level = 'SHORT'
+      m%renumber = 'AUTO'
+      m%condense = 'AUTO'
       allocate (m%fixes(0), m%point_loads(0), m%edge_loads(0), m%body_loads(0), m%mats(0), m%ties(3, 0))
       allocate (m%contact%ifaces(0), m%contact%pairs(0))
       if (.not. loaded) then
@@ -82,7 +89,7 @@ contains
          iblk = block_index(kw)
          if (.not. d%is_keyword_card(ic) .or. iblk == 0) then
             call d%error_at(ic, 1, 'E-BLOCK', 'expected a block keyword ('// &
-                            'TITLE, CONTROL, OPTIONS, ELEMENTS, NODES, RESTRAINTS, TIES, MATERIALS, '// &
+                            'TITLE, CONTROL, OPTIONS, MESH, ELEMENTS, NODES, RESTRAINTS, TIES, MATERIALS, '// &
                             'LOADS, CONTACT, INCREMENTS or END), found "'//trim(d%cards(ic)%text)//'"')
             call skip_to_block(d)
             cycle
@@ -94,14 +101,14 @@ contains
          end if
          if (iblk < last) then
             call d%error_at(ic, 1, 'E-ORDER', 'block '//trim(kw)//' is out of order: it must come before '// &
-                            trim(block_order(last))//' (order: TITLE, CONTROL, OPTIONS, ELEMENTS, '// &
+                            trim(block_order(last))//' (order: TITLE, CONTROL, OPTIONS, MESH, ELEMENTS, '// &
                             'NODES, RESTRAINTS, TIES, MATERIALS, LOADS, CONTACT, INCREMENTS, END)')
             call skip_to_block(d)
             cycle
          end if
          ! required blocks skipped over
          do k = last + 1, iblk - 1
-            if (block_required(k) .and. .not. seen(k)) then
+            if (required(k) .and. .not. seen(k)) then
                call d%error_at(ic, 1, 'E-MISSING-BLOCK', 'missing block '//trim(block_order(k))// &
                                ': expected it before '//trim(kw))
             end if
@@ -116,17 +123,23 @@ contains
             call read_control(d, ic, m, ctl)
          case ('OPTIONS')
             call read_options(d, m)
+         case ('MESH')
+            call start_mesh_block(d, ic, m, ctl)
          case ('ELEMENTS')
-            if (ctl%ok) then
-               call read_elements(d, ic, m)
-            else
+            if (.not. ctl%ok) then
                call skip_to_block(d)
+            else if (mesh_conflict(d, ic, ctl, seen)) then
+               call skip_to_block(d)
+            else
+               call read_elements(d, ic, m)
             end if
          case ('NODES')
-            if (ctl%ok) then
-               call read_nodes(d, ic, m)
-            else
+            if (.not. ctl%ok) then
                call skip_to_block(d)
+            else if (mesh_conflict(d, ic, ctl, seen)) then
+               call skip_to_block(d)
+            else
+               call read_nodes(d, ic, m)
             end if
          case ('RESTRAINTS')
             restraint_line = d%cards(ic)%line
@@ -173,7 +186,7 @@ contains
       end do
 
       do k = 1, size(block_order)
-         if (block_required(k) .and. .not. seen(k) .and. k > last) then
+         if (required(k) .and. .not. seen(k) .and. k > last) then
             call d%error_eof('E-MISSING-BLOCK', 'missing block '//trim(block_order(k))// &
                              ' (the deck ended before it; every deck ends with an END card)')
          end if
@@ -184,7 +197,51 @@ contains
          if (d%errors%n == 0) call check_model(d, m, restraint_line)
       end if
       errors = d%errors
+   contains
+      !> Whether block k must appear: ELEMENTS and NODES not after a MESH block.
+      logical function required(k)
+         integer, intent(in) :: k
+         required = block_required(k)
+         if (seen(block_index('MESH')) .and. (block_order(k) == 'ELEMENTS' .or. block_order(k) == 'NODES')) &
+            required = .false.
+      end function required
    end subroutine read_deck
+
+   !> MESH block: only with NPOIN = NELEM = 0 on the control card (see mesh_block).
+   subroutine start_mesh_block(d, ic, m, ctl)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(model_t), intent(inout) :: m
+      type(control_t), intent(inout) :: ctl
+      if (.not. ctl%ok) then
+         call skip_to_block(d)
+      else if (.not. ctl%counts_from_mesh) then
+         call d%error_at(ic, 1, 'E-MESH', 'MESH: the mesh comes from the .msh file, so NPOIN and NELEM on the '// &
+                         'control card (line '//itoa(ctl%line)//') must be blank or 0')
+         call skip_to_block(d)
+         ctl%ok = .false.
+      else
+         call read_mesh_block(d, ic, m, m%nnode, is_block_card, ctl%ok)
+      end if
+   end subroutine start_mesh_block
+
+   !> ELEMENTS or NODES after a MESH block, or without the counts they need.
+   logical function mesh_conflict(d, ic, ctl, seen)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(control_t), intent(in) :: ctl
+      logical, intent(in) :: seen(:)
+      mesh_conflict = .true.
+      if (seen(block_index('MESH'))) then
+         call d%error_at(ic, 1, 'E-BLOCK', 'block '//d%keyword(ic)//' cannot be given with a MESH block: '// &
+                         'the mesh comes from the .msh file')
+      else if (ctl%counts_from_mesh) then
+         call d%error_at(ic, 1, 'E-CONTROL', 'CONTROL: NPOIN and NELEM are 0 or blank on the control card (line '// &
+                         itoa(ctl%line)//'): give them, or take the mesh from a MESH block')
+      else
+         mesh_conflict = .false.
+      end if
+   end function mesh_conflict
 
    !> Consume data cards up to (not including) the next block keyword card.
    subroutine skip_to_block(d)
@@ -221,19 +278,23 @@ contains
 
    !> Next data card of the current block, or 0 at the next block keyword.
    !! A card that starts with a letter but is no block keyword is reported.
-   integer function next_data_card(d, card, expected) result(ic)
+   integer function next_data_card(d, card, expected, allow_group) result(ic)
       type(deck_t), intent(inout) :: d
       character(len=*), intent(in) :: card      !! card name
       character(len=*), intent(in) :: expected  !! what its first field holds
+      logical, intent(in), optional :: allow_group  !! GROUP cards are data cards here (see group_cards)
       ic = 0
       do while (.not. d%at_end())
          if (is_block_card(d, d%peek())) return
          ic = d%next()
+         if (present(allow_group)) then
+            if (allow_group .and. is_group_card(d, ic)) return
+         end if
          if (d%is_keyword_card(ic)) then
             ! an unknown keyword: report it once and skip its cards
             call d%error_at(ic, 1, 'E-BLOCK', card//': expected '//expected// &
-                            ' or a block keyword (TITLE, CONTROL, OPTIONS, ELEMENTS, NODES, RESTRAINTS, TIES, '// &
-                            'MATERIALS, LOADS, CONTACT, INCREMENTS, END), found "'//trim(d%cards(ic)%text)//'"')
+                            ' or a block keyword (TITLE, CONTROL, OPTIONS, MESH, ELEMENTS, NODES, RESTRAINTS, '// &
+                            'TIES, MATERIALS, LOADS, CONTACT, INCREMENTS, END), found "'//trim(d%cards(ic)%text)//'"')
             call skip_to_block(d)
             ic = 0
             return
@@ -297,24 +358,32 @@ contains
       end if
       ctl%line = d%cards(ic)%line
       ok = .true.
-      call d%get_int(ic, 1, 5, 'CONTROL', 'NPOIN', m%npoin, ok)
-      call d%get_int(ic, 6, 10, 'CONTROL', 'NELEM', m%nelem, ok)
+      call d%get_int(ic, 1, 5, 'CONTROL', 'NPOIN', m%npoin, ok, default=0)
+      call d%get_int(ic, 6, 10, 'CONTROL', 'NELEM', m%nelem, ok, default=0)
       call d%get_int(ic, 11, 15, 'CONTROL', 'NVFIX', ctl%nvfix, ok)
       call d%get_int(ic, 16, 20, 'CONTROL', 'NTYPE', m%ntype, ok)
-      call d%get_int(ic, 21, 25, 'CONTROL', 'NNODE', m%nnode, ok)
+      call d%get_int(ic, 21, 25, 'CONTROL', 'NNODE', m%nnode, ok, default=0)
       call d%get_int(ic, 26, 30, 'CONTROL', 'NMATS', m%nmats, ok)
       call d%get_int(ic, 31, 35, 'CONTROL', 'NGAUS', m%ngaus, ok, default=0)
       call d%get_word(ic, 36, 45, 'CONTROL', 'SOLVER', w, ok, default='SKYLINE')
+      ctl%counts_from_mesh = ok .and. m%npoin == 0 .and. m%nelem == 0
       if (ok) then
-         if (m%npoin < 1) call bad(1, 'NPOIN (columns 1-5) expected a positive number of nodes, found '//itoa(m%npoin))
-         if (m%nelem < 1) call bad(6, 'NELEM (columns 6-10) expected a positive number of elements, found '// &
-                                   itoa(m%nelem))
+         if (ctl%counts_from_mesh) then
+            ! NPOIN = NELEM = 0: the mesh comes from a MESH block; NNODE 0 = any element of the file
+            if (all(m%nnode /= [0, 3, 4, 8, 9])) call bad(21, 'NNODE (columns 21-25) expected 0 or blank (any '// &
+                                                          'element of the mesh file), 3, 4, 8 or 9, found '//itoa(m%nnode))
+         else
+            if (m%npoin < 1) call bad(1, 'NPOIN (columns 1-5) expected a positive number of nodes, found '// &
+                                      itoa(m%npoin))
+            if (m%nelem < 1) call bad(6, 'NELEM (columns 6-10) expected a positive number of elements, found '// &
+                                      itoa(m%nelem))
+            if (all(m%nnode /= [3, 4, 8, 9])) call bad(21, 'NNODE (columns 21-25) expected 3, 4, 8 or 9 nodes '// &
+                                                       'per element, found '//itoa(m%nnode))
+         end if
          if (ctl%nvfix < 0) call bad(11, 'NVFIX (columns 11-15) expected a number of restraint cards >= 0, found '// &
                                      itoa(ctl%nvfix))
          if (m%ntype < 1 .or. m%ntype > 3) call bad(16, 'NTYPE (columns 16-20) expected 1 (plane stress), '// &
                                                     '2 (plane strain) or 3 (axisymmetric), found '//itoa(m%ntype))
-         if (all(m%nnode /= [3, 4, 8, 9])) call bad(21, 'NNODE (columns 21-25) expected 3, 4, 8 or 9 nodes '// &
-                                                    'per element, found '//itoa(m%nnode))
          if (m%nmats < 1) call bad(26, 'NMATS (columns 26-30) expected a positive number of materials, found '// &
                                    itoa(m%nmats))
          if (m%ngaus < 0 .or. m%ngaus > 4) call bad(31, 'NGAUS (columns 31-35) expected 0 (default rule) '// &
@@ -343,6 +412,8 @@ contains
       type(model_t), intent(inout) :: m
       integer :: ic
       logical :: ok
+      real(dp) :: x
+      integer :: iv
       character(len=:), allocatable :: key, val
 
       do while (.not. d%at_end())
@@ -361,8 +432,43 @@ contains
             else if (ok) then
                m%listing_level = val
             end if
+         case ('RENUMBER')
+            call d%get_word(ic, 11, 20, 'OPTIONS', 'RENUMBER', val, ok)
+            if (ok .and. all(val /= [character(len=4) :: 'RCM', 'NONE'])) then
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: RENUMBER (columns 11-20) expected RCM or NONE, '// &
+                               'found "'//val//'"')
+            else if (ok) then
+               m%renumber = val
+            end if
+         case ('AUTOINC')
+            call d%get_word(ic, 11, 20, 'OPTIONS', 'AUTOINC', val, ok)
+            call d%get_real(ic, 21, 30, 'OPTIONS', 'MINFRAC', x, ok, default=1.0_dp/128.0_dp)
+            call d%get_int(ic, 31, 40, 'OPTIONS', 'NEASY', iv, ok, default=4)
+            if (ok .and. all(val /= [character(len=3) :: 'ON', 'OFF'])) then
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: AUTOINC (columns 11-20) expected ON or OFF, '// &
+                               'found "'//val//'"')
+            else if (ok .and. .not. (x > 0.0_dp .and. x <= 1.0_dp)) then
+               call d%error_at(ic, 21, 'E-OPTION', 'OPTIONS: AUTOINC MINFRAC (columns 21-30) expected the '// &
+                               'smallest step as a fraction of a deck increment, in (0, 1], found '//rtoa(x))
+            else if (ok .and. iv < 1) then
+               call d%error_at(ic, 31, 'E-OPTION', 'OPTIONS: AUTOINC NEASY (columns 31-40) expected a number '// &
+                               'of solutions >= 1, found '//itoa(iv))
+            else if (ok) then
+               m%autoinc = val == 'ON'
+               m%autoinc_min = x
+               m%autoinc_easy = iv
+            end if
+         case ('CONDENSE')
+            call d%get_word(ic, 11, 20, 'OPTIONS', 'CONDENSE', val, ok)
+            if (ok .and. all(val /= [character(len=4) :: 'AUTO', 'ON', 'OFF'])) then
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: CONDENSE (columns 11-20) expected AUTO, ON or OFF, '// &
+                               'found "'//val//'"')
+            else if (ok) then
+               m%condense = val
+            end if
          case default
-            call d%error_at(ic, 1, 'E-OPTION', 'OPTIONS: unknown option "'//key//'" (columns 1-10); known: LISTING')
+            call d%error_at(ic, 1, 'E-OPTION', 'OPTIONS: unknown option "'//key//'" (columns 1-10); '// &
+                            'known: LISTING, RENUMBER, AUTOINC, CONDENSE')
          end select
       end do
    end subroutine read_options
@@ -526,16 +632,25 @@ contains
       type(control_t), intent(in) :: ctl
       type(restraint_t), allocatable :: list(:)
       integer, allocatable :: first_line(:)
-      integer :: ic, n, node, code, icase
+      integer :: ic, n, node, code, icase, ngroup, ngroup_entries, k0
       real(dp) :: ux, uy
       logical :: ok
 
+      ngroup = 0        ! GROUP cards, and the restraint entries they gave
+      ngroup_entries = 0
       allocate (list(max(ctl%nvfix, 0) + 16), first_line(m%npoin))
       first_line = 0
       n = 0
       do
-         ic = next_data_card(d, 'RESTRAINTS', 'a restraint card (node number in columns 1-5)')
+         ic = next_data_card(d, 'RESTRAINTS', 'a restraint card (node number in columns 1-5)', allow_group=.true.)
          if (ic == 0) exit
+         if (is_group_card(d, ic)) then
+            ngroup = ngroup + 1
+            k0 = n
+            call read_group_restraint(d, ic, m, list, n)
+            ngroup_entries = ngroup_entries + (n - k0)
+            cycle
+         end if
          ok = .true.
          call d%get_int(ic, 1, 5, 'RESTRAINTS', 'NODE', node, ok)
          call d%get_int(ic, 6, 10, 'RESTRAINTS', 'CODE', code, ok)
@@ -578,11 +693,12 @@ contains
          list(n)%icase = icase
          list(n)%line = d%cards(ic)%line
       end do
-      if (n /= ctl%nvfix) then
+      if (n - ngroup_entries + ngroup /= ctl%nvfix) then
          call d%error_at(ickw, 1, 'E-COUNT', 'RESTRAINTS: NVFIX = '//itoa(ctl%nvfix)// &
-                         ' on the control card, but the block has '//itoa(n)//' cards')
+                         ' on the control card, but the block has '//itoa(n - ngroup_entries + ngroup)//' cards')
       end if
       m%fixes = pack(list(1:n), list(1:n)%node > 0)
+      if (ngroup > 0) call check_restraint_overlaps(d, m, m%fixes)
    end subroutine read_restraints
 
    !> Anything past the last field of a card is an error.
@@ -678,6 +794,11 @@ contains
          ic = d%peek()
          if (is_block_card(d, ic)) exit
          ic = d%next()
+         if (is_group_card(d, ic) .and. (sub == 'POINT' .or. sub == 'EDGE')) then
+            if (sub == 'POINT') call read_group_point_load(d, ic, m, pl, npl)
+            if (sub == 'EDGE') call read_group_edge_load(d, ic, m, el, nel)
+            cycle
+         end if
          if (d%is_keyword_card(ic)) then
             sub = d%keyword(ic)
             if (all(sub /= [character(len=5) :: 'POINT', 'EDGE', 'BODY'])) then
@@ -993,7 +1114,11 @@ contains
             else
                msg = msg//'degenerate (zero area: Jacobian determinant '//rtoa(jmin)//')'
             end if
-            call d%errors%add('E-GEOMETRY', msg, file=d%file, line=m%elem_line(ie), col=11)
+            if (allocated(m%mesh_file)) then
+               call d%errors%add('E-GEOMETRY', msg, file=m%mesh_file, line=m%elem_line(ie))
+            else
+               call d%errors%add('E-GEOMETRY', msg, file=d%file, line=m%elem_line(ie), col=11)
+            end if
          end if
       end do
       do ip = 1, m%npoin

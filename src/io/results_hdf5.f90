@@ -29,6 +29,7 @@ module results_hdf5
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
    use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name
+   use xdmf_writer, only: write_xdmf, xdmf_path, CELL_NNODE, XDMF_CELL_CODE
    implicit none
    private
    public :: results_file_t, K2D_VERSION
@@ -40,6 +41,14 @@ module results_hdf5
       character(len=:), allocatable :: path
       integer :: ncompleted = 0
       logical :: is_open = .false.
+      ! what the XDMF sidecar needs (see xdmf_writer)
+      integer :: npoin = 0
+      integer :: ncells(4) = 0                 !! elements of each kind: T3, Q4, Q8, Q9
+      integer :: nmixed = 0                    !! length of /mesh/cells_mixed (mixed meshes)
+      integer, allocatable :: incs(:)          !! finished increments
+      real(dp), allocatable :: lambda(:, :)    !! (ncase, ncompleted) their load factors
+      real(dp), allocatable :: lambda_open(:)  !! load factors of the increment being written
+      integer :: inc_open = 0
    contains
       procedure :: create => results_create
       procedure :: open_increment => results_open_increment
@@ -72,6 +81,8 @@ contains
       if (.not. library_open) then
          call h5open_f(err)
          if (fail(err, 'initialise the HDF5 library')) return
+         ! errors are reported by this module, not by HDF5's own error stack printer
+         call h5eset_auto_f(0, err)
          library_open = .true.
       end if
       call h5fcreate_f(path, H5F_ACC_TRUNC_F, this%fid, err)
@@ -107,12 +118,16 @@ contains
       end do
       call write_int1(gid, 'gauss_element', gel, err)
       if (fail(err, 'write the mesh')) return
+      call write_xdmf_mesh(this, gid, m, err)
+      if (fail(err, 'write the node tags and the 0-based cells of the mesh')) return
       call h5gclose_f(gid, err)
       call h5gcreate_f(this%fid, 'increments', gid, err)
       if (fail(err, 'create group /increments')) return
       call h5gclose_f(gid, err)
       call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, err)
       if (fail(err, 'flush the result file')) return
+      allocate (this%incs(0), this%lambda(m%ncase, 0))
+      call update_xdmf(this, status)
    contains
       logical function fail(e, what)
          integer, intent(in) :: e
@@ -135,6 +150,8 @@ contains
       character(len=16) :: name
 
       write (name, '(i5.5)') inc
+      this%inc_open = inc
+      this%lambda_open = lambda
       call h5gcreate_f(this%fid, 'increments/'//trim(name), gid, err)
       if (err < 0) then
          call status%set(STAT_IO, 'HDF5: cannot create group /increments/'//trim(name)//' in '//this%path)
@@ -153,14 +170,94 @@ contains
       class(results_file_t), intent(inout) :: this
       integer(hid_t), intent(in) :: gid
       type(status_t), intent(inout) :: status
-      integer :: err
-      call h5gclose_f(gid, err)
+      integer :: err, e
+      err = 0
+      call h5gclose_f(gid, e)
+      call keep(e, err)
       this%ncompleted = this%ncompleted + 1
-      call h5adelete_f(this%fid, 'increments_completed', err)
+      call h5adelete_f(this%fid, 'increments_completed', e)
+      call keep(e, err)
       call attr_int(this%fid, 'increments_completed', this%ncompleted, err)
-      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, err)
-      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot flush '//this%path)
+      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, e)
+      call keep(e, err)
+      if (err < 0) then
+         call status%set(STAT_IO, 'HDF5: cannot record increment '//itoa(this%ncompleted)// &
+                         ' as completed (close its group, update increments_completed, flush) in '// &
+                         this%path)
+         return
+      end if
+      if (allocated(this%incs)) then
+         this%incs = [this%incs, this%inc_open]
+         block
+            real(dp), allocatable :: t(:, :)
+            allocate (t(size(this%lambda, 1), this%ncompleted))
+            t(:, 1:this%ncompleted - 1) = this%lambda(:, 1:this%ncompleted - 1)
+            t(:, this%ncompleted) = this%lambda_open(1:size(t, 1))
+            call move_alloc(t, this%lambda)
+         end block
+         call update_xdmf(this, status)
+      end if
    end subroutine results_close_increment
+
+   !> Mesh datasets for the XDMF sidecar: /mesh/node_tags (gmsh tags, or the
+   !! deck's node numbers), 0-based connectivity per element kind
+   !! (/mesh/cells_tri3, cells_quad4, cells_quad8, cells_quad9, only the kinds
+   !! present) and, for a mixed mesh, /mesh/cells_mixed (XDMF Mixed topology).
+   subroutine write_xdmf_mesh(this, gid, m, err)
+      class(results_file_t), intent(inout) :: this
+      integer(hid_t), intent(in) :: gid
+      type(model_t), intent(in) :: m
+      integer, intent(inout) :: err
+      integer, allocatable :: tags(:), cells(:, :), mixed(:)
+      integer :: k, ie, n, ip, pos
+      character(len=5), parameter :: names(4) = ['tri3 ', 'quad4', 'quad8', 'quad9']
+
+      this%npoin = m%npoin
+      allocate (tags(m%npoin))
+      if (allocated(m%node_tag)) then
+         tags(:) = m%node_tag
+      else
+         tags(:) = [(ip, ip=1, m%npoin)]
+      end if
+      call write_int1(gid, 'node_tags', tags, err)
+      do k = 1, 4
+         this%ncells(k) = count(m%nnode_e(1:m%nelem) == CELL_NNODE(k))
+         if (this%ncells(k) == 0) cycle
+         allocate (cells(CELL_NNODE(k), this%ncells(k)))
+         n = 0
+         do ie = 1, m%nelem
+            if (m%nnode_e(ie) /= CELL_NNODE(k)) cycle
+            n = n + 1
+            cells(:, n) = m%lnods(1:CELL_NNODE(k), ie) - 1
+         end do
+         call write_int2(gid, 'cells_'//trim(names(k)), cells, err)
+         deallocate (cells)
+      end do
+      if (count(this%ncells > 0) > 1) then
+         this%nmixed = m%nelem + sum(m%nnode_e(1:m%nelem))
+         allocate (mixed(this%nmixed))
+         pos = 0
+         do ie = 1, m%nelem
+            do k = 1, 4
+               if (m%nnode_e(ie) == CELL_NNODE(k)) mixed(pos + 1) = XDMF_CELL_CODE(k)
+            end do
+            mixed(pos + 2:pos + 1 + m%nnode_e(ie)) = m%lnods(1:m%nnode_e(ie), ie) - 1
+            pos = pos + 1 + m%nnode_e(ie)
+         end do
+         call write_int1(gid, 'cells_mixed', mixed, err)
+      end if
+   end subroutine write_xdmf_mesh
+
+   !> Rewrite the XDMF sidecar for the increments finished so far.
+   subroutine update_xdmf(this, status)
+      class(results_file_t), intent(inout) :: this
+      type(status_t), intent(inout) :: status
+      integer :: ierr
+      call write_xdmf(xdmf_path(this%path), this%path, this%npoin, this%ncells, this%nmixed, this%incs, &
+                      this%lambda, ierr)
+      if (ierr /= 0) call status%set(STAT_IO, 'cannot write the XDMF file '//xdmf_path(this%path)// &
+                                     ' (error '//itoa(ierr)//')')
+   end subroutine update_xdmf
 
    !> Replace the root attribute `status` (running, completed, failed: ...).
    subroutine results_set_status(this, text)

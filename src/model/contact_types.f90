@@ -91,6 +91,8 @@ module contact_types
       integer :: n_start = 0                !! close the n_start pairs of smallest gap initially (0: by gap)
       real(dp) :: gap_tol = -1.0_dp         !! pairs with g0 <= gap_tol start closed (< 0: 1e-9 x model size)
       real(dp) :: tol_residual = 1.0e-10_dp !! relative out-of-balance force accepted by RETURN
+      real(dp) :: tol_displacement = 1.0e-8_dp  !! relative last correction accepted by RETURN
+      logical :: modified = .false.         !! RETURN with the stiffness of the first solution (modified Newton)
       real(dp) :: p_min_ratio = 1.0e-3_dp   !! floor of a newly closed pair's secant pressure, x p_m
    end type contact_options_t
 

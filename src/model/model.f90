@@ -97,7 +97,9 @@ module model
       integer, allocatable :: nnode_e(:)     !! nodes of each element
       integer, allocatable :: matno(:)       !! material of each element
       integer, allocatable :: node_line(:)   !! deck line of each node card
-      integer, allocatable :: elem_line(:)   !! deck line of each element card
+      integer, allocatable :: elem_line(:)   !! deck line of each element card (.msh line with a MESH block)
+      integer, allocatable :: node_tag(:)    !! (npoin) gmsh node tags (MESH block); unallocated for deck meshes
+      character(len=:), allocatable :: mesh_file  !! .msh file of a MESH block ('' or unallocated: the deck)
       ! materials, boundary conditions, loads
       type(material_t), allocatable :: mats(:)
       type(restraint_t), allocatable :: fixes(:)
@@ -114,8 +116,16 @@ module model
       ! named sets (from gmsh physical groups or the deck)
       type(node_set_t), allocatable :: node_sets(:)
       type(edge_set_t), allocatable :: edge_sets(:)
+      ! increment control: automatic cutting and growing of the deck's increments
+      logical :: autoinc = .false.
+      real(dp) :: autoinc_min = 1.0_dp/128.0_dp  !! smallest step, as a fraction of a deck increment
+      integer :: autoinc_easy = 4                !! solutions of an easy step (the next may grow)
+      ! condensation of the bodies onto the contact equations: AUTO, ON or OFF
+      character(len=:), allocatable :: condense
       ! output control
       character(len=:), allocatable :: listing_level  !! FULL, SHORT or NONE
+      ! equation numbering: AUTO (RCM for skyline), RCM or NONE (OPTIONS RENUMBER)
+      character(len=:), allocatable :: renumber
    end type model_t
 
 contains

@@ -15,11 +15,9 @@ module solver_factory
 ! ---------------------------------------------------------------- UMFPACK hook
 ! The UMFPACK solver lives in module `umfpack_solver` (src/solvers/umfpack_solver.f90,
 ! type `umfpack_solver_t`) and is compiled only when CMake defines
-! KONTAKT2D_HAVE_UMFPACK.  Until that module exists, K2D_UMFPACK_SOLVER stays 0 so
-! that builds which find UMFPACK still compile.  [UMFPACK-HOOK] The commit that
-! adds umfpack_solver.f90 sets it to 1 below; nothing else in this file changes.
+! KONTAKT2D_HAVE_UMFPACK; K2D_UMFPACK_SOLVER follows that definition.  [UMFPACK-HOOK]
 #ifdef KONTAKT2D_HAVE_UMFPACK
-#define K2D_UMFPACK_SOLVER 0
+#define K2D_UMFPACK_SOLVER 1
 #else
 #define K2D_UMFPACK_SOLVER 0
 #endif

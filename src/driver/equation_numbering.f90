@@ -1,0 +1,127 @@
+!> Equation numbering for the driver: node order (reverse Cuthill-McKee or
+!! the user's), DOF map, equation graph, and the profile before and after.
+!!
+!! The skyline solver's cost is set by its profile, so its equations follow
+!! an RCM order of the node graph unless the deck says `RENUMBER NONE`.
+!! UMFPACK orders the matrix itself (AMD), and the dense solver has no
+!! profile, so by default they keep the user's order.  Whatever the order,
+!! results are reported in the user's node numbers: only the equation
+!! numbers change.
+module equation_numbering
+   use kinds, only: dp, i8
+   use errors, only: status_t
+   use strings, only: itoa, rtoa, upper
+   use model, only: model_t
+   use dof_map, only: dof_map_t, build_dof_map
+   use graph, only: build_node_graph, build_equation_graph
+   use renumber, only: rcm_order, RENUMBER_AUTO, RENUMBER_RCM, RENUMBER_NONE
+   use skyline_solver, only: graph_profile
+   implicit none
+   private
+   public :: numbering_report_t, number_equations, write_numbering_report
+
+   !> What the numbering did, for the listing and the terminal.
+   type :: numbering_report_t
+      character(len=:), allocatable :: method      !! 'RCM' or 'NONE'
+      character(len=:), allocatable :: reason      !! why this method
+      integer(i8) :: profile_before = 0            !! skyline length in the user's order
+      real(dp) :: mean_before = 0.0_dp
+      integer :: max_before = 0
+      integer(i8) :: profile_after = 0             !! skyline length in the order used
+      real(dp) :: mean_after = 0.0_dp
+      integer :: max_after = 0
+   end type numbering_report_t
+
+contains
+
+   !> Choose the node order, number the equations and build the equation graph.
+   subroutine number_equations(m, solver_name, links, map, xadj, adjncy, rep, status, ties)
+      type(model_t), intent(in) :: m
+      character(len=*), intent(in) :: solver_name   !! solver in use (case-insensitive)
+      integer, intent(in) :: links(:, :)            !! (2, nlink) extra node couplings (contact pairs, ties)
+      type(dof_map_t), intent(out) :: map
+      integer, allocatable, intent(out) :: xadj(:), adjncy(:)   !! equation graph (CSR, 1-based)
+      type(numbering_report_t), intent(out) :: rep
+      type(status_t), intent(inout) :: status
+      integer, intent(in), optional :: ties(:, :)   !! (3, ntie) master, slave, dof: passed to build_dof_map
+      integer, allocatable :: order(:), nxadj(:), nadj(:), x0(:), a0(:)
+      type(dof_map_t) :: map0
+      character(len=:), allocatable :: choice
+      integer :: ip
+
+      choice = RENUMBER_AUTO
+      if (allocated(m%renumber)) then
+         if (len_trim(m%renumber) > 0) choice = upper(trim(m%renumber))
+      end if
+      select case (choice)
+      case (RENUMBER_RCM)
+         rep%method = RENUMBER_RCM
+         rep%reason = 'OPTIONS RENUMBER RCM'
+      case (RENUMBER_NONE)
+         rep%method = RENUMBER_NONE
+         rep%reason = 'OPTIONS RENUMBER NONE'
+      case default
+         if (upper(trim(adjustl(solver_name))) == 'SKYLINE') then
+            rep%method = RENUMBER_RCM
+            rep%reason = 'default for the skyline solver'
+         else
+            rep%method = RENUMBER_NONE
+            rep%reason = 'default for the '//trim(adjustl(solver_name))//' solver'
+            if (upper(trim(adjustl(solver_name))) == 'UMFPACK') &
+               rep%reason = 'default for UMFPACK, which orders the matrix itself'
+         end if
+      end select
+
+      call build_node_graph(m, links, nxadj, nadj)
+      allocate (order(m%npoin))
+      order = [(ip, ip=1, m%npoin)]
+      if (present(ties)) then
+         call build_dof_map(m, order, map0, ties)
+      else
+         call build_dof_map(m, order, map0)
+      end if
+      call build_equation_graph(map0, nxadj, nadj, x0, a0)
+      call graph_profile(map0%neq, x0, a0, rep%profile_before, rep%mean_before, rep%max_before, status)
+      if (.not. status%ok()) return
+      if (rep%method == RENUMBER_NONE) then
+         map = map0
+         call move_alloc(x0, xadj)
+         call move_alloc(a0, adjncy)
+         rep%profile_after = rep%profile_before
+         rep%mean_after = rep%mean_before
+         rep%max_after = rep%max_before
+         return
+      end if
+      deallocate (x0, a0)
+      call rcm_order(m%npoin, nxadj, nadj, order)
+      if (present(ties)) then
+         call build_dof_map(m, order, map, ties)
+      else
+         call build_dof_map(m, order, map)
+      end if
+      call build_equation_graph(map, nxadj, nadj, xadj, adjncy)
+      call graph_profile(map%neq, xadj, adjncy, rep%profile_after, rep%mean_after, rep%max_after, status)
+   end subroutine number_equations
+
+   !> Two lines for the listing header and the terminal.
+   subroutine write_numbering_report(u, rep)
+      integer, intent(in) :: u
+      type(numbering_report_t), intent(in) :: rep
+      write (u, '(a)') ' Renumbering  : '//rep%method//' ('//rep%reason//')'
+      write (u, '(a)') ' Profile      : user order '//profile_text(rep%profile_before, rep%mean_before, rep%max_before)
+      if (rep%method /= RENUMBER_NONE) &
+         write (u, '(a)') '                '//rep%method//'        '// &
+         profile_text(rep%profile_after, rep%mean_after, rep%max_after)
+   end subroutine write_numbering_report
+
+   !> "skyline N, mean column height H, max M".
+   function profile_text(n, mean, mx) result(s)
+      integer(i8), intent(in) :: n
+      real(dp), intent(in) :: mean
+      integer, intent(in) :: mx
+      character(len=:), allocatable :: s
+      character(len=24) :: b
+      write (b, '(i0)') n
+      s = 'skyline '//trim(b)//', mean column height '//rtoa(mean, '(f0.1)')//', max '//itoa(mx)
+   end function profile_text
+end module equation_numbering

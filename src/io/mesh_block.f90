@@ -1,0 +1,161 @@
+!> The deck's MESH block: the mesh comes from a gmsh `.msh` file instead of
+!! the ELEMENTS and NODES blocks.
+!!
+!!     MESH
+!!     GMSH      plate.msh                      # path relative to the deck
+!!     MATERIAL  plate                   1      # physical surface -> material
+!!
+!! Cards (keyword in columns 1-10):
+!! * `GMSH`: the path in columns 11 to the end of the card (relative to the
+!!   deck's folder unless it starts with `/`); exactly one.
+!! * `MATERIAL`: physical surface name in columns 11-40, MATNO in 41-45; one
+!!   card per physical surface of the mesh.
+!!
+!! Errors in the cards are reported at the deck; errors in the mesh file at
+!! the .msh file and line (see gmsh_reader).
+module mesh_block
+   use errors, only: error_list_t
+   use strings, only: itoa
+   use deck_lexer, only: deck_t
+   use model, only: model_t
+   use gmsh_reader, only: gmsh_mesh_t, read_gmsh, gmsh_to_model
+   implicit none
+   private
+   public :: read_mesh_block, mesh_path
+
+contains
+
+   !> Read the MESH block's cards (up to the next block keyword) and the mesh.
+   subroutine read_mesh_block(d, ickw, m, nnode_req, is_block_card, ok)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ickw             !! the MESH keyword card
+      type(model_t), intent(inout) :: m       !! ntype, nmats, ngaus set; mesh filled here
+      integer, intent(in) :: nnode_req        !! NNODE of the control card (0: any)
+      interface
+         logical function is_block_card(d, ic)
+            import :: deck_t
+            type(deck_t), intent(in) :: d
+            integer, intent(in) :: ic
+         end function is_block_card
+      end interface
+      logical, intent(out) :: ok              !! the mesh was read without error
+      character(len=:), allocatable :: key, file, name
+      character(len=64), allocatable :: names(:)
+      integer, allocatable :: mats(:), lines(:)
+      integer :: ic, imat, n0, nmat, k, gmsh_line
+      logical :: cok
+      type(gmsh_mesh_t) :: msh
+
+      n0 = d%errors%n
+      file = ''
+      name = ''
+      key = ''
+      gmsh_line = 0
+      nmat = 0
+      allocate (names(8), mats(8), lines(8))
+      do while (.not. d%at_end())
+         ic = d%peek()
+         if (is_block_card(d, ic)) exit
+         ic = d%next()
+         cok = .true.
+         call d%get_word(ic, 1, 10, 'MESH', 'KEY', key, cok)
+         if (.not. cok) cycle
+         select case (key)
+         case ('GMSH')
+            if (gmsh_line /= 0) then
+               call d%error_at(ic, 1, 'E-MESH', 'MESH: a second GMSH card (the first is on line '// &
+                               itoa(gmsh_line)//'); give one mesh file')
+               cycle
+            end if
+            file = trim(adjustl(d%field_text(ic, 11, 100000)))
+            gmsh_line = d%cards(ic)%line
+            if (len(file) == 0) then
+               call d%error_at(ic, 11, 'E-MISSING', 'MESH: GMSH expected the path of a .msh file in columns '// &
+                               '11 onwards, found a blank field')
+               gmsh_line = -1
+            end if
+         case ('MATERIAL')
+            name = trim(adjustl(d%field_text(ic, 11, 40)))
+            if (len(name) == 0) then
+               call d%error_at(ic, 11, 'E-MISSING', 'MESH: MATERIAL expected a physical surface name in '// &
+                               'columns 11-40, found a blank field')
+               cycle
+            end if
+            call d%get_int(ic, 41, 45, 'MESH/MATERIAL', 'MATNO', imat, cok)
+            if (cok .and. len_trim(d%field_text(ic, 46, 100000)) > 0) then
+               call d%error_at(ic, 46, 'E-EXTRA', 'MESH/MATERIAL: expected the name (columns 11-40) and MATNO '// &
+                               '(columns 41-45), found more: "'//trim(adjustl(d%field_text(ic, 46, 100000)))//'"')
+               cok = .false.
+            end if
+            if (.not. cok) cycle
+            if (imat < 1 .or. imat > m%nmats) then
+               call d%error_at(ic, 41, 'E-RANGE', 'MESH/MATERIAL: MATNO (columns 41-45) expected 1..'// &
+                               itoa(m%nmats)//' (NMATS), found '//itoa(imat))
+               cycle
+            end if
+            do k = 1, nmat
+               if (same_name(names(k), name)) then
+                  call d%error_at(ic, 11, 'E-DUPLICATE', 'MESH/MATERIAL: physical surface "'//name// &
+                                  '" is given twice (first on line '//itoa(lines(k))//')')
+                  cok = .false.
+               end if
+            end do
+            if (.not. cok) cycle
+            if (nmat == size(names)) then
+               names = [names, names]
+               mats = [mats, mats]
+               lines = [lines, lines]
+            end if
+            nmat = nmat + 1
+            names(nmat) = name
+            mats(nmat) = imat
+            lines(nmat) = d%cards(ic)%line
+         case default
+            call d%error_at(ic, 1, 'E-MESH', 'MESH: expected a GMSH or MATERIAL card, found "'// &
+                            trim(d%cards(ic)%text)//'"')
+         end select
+      end do
+      if (gmsh_line == 0) call d%error_at(ickw, 1, 'E-MESH', 'MESH: the block has no GMSH card naming the mesh file')
+      if (nmat == 0) call d%error_at(ickw, 1, 'E-MESH', 'MESH: the block has no MATERIAL card (one per '// &
+                                     'physical surface: MATERIAL  <name, columns 11-40> <MATNO, columns 41-45>)')
+      ok = d%errors%n == n0
+      if (.not. ok) return
+
+      m%mesh_file = mesh_path(d%file, file)
+      call read_gmsh(m%mesh_file, msh, d%errors)
+      if (d%errors%n == n0) call gmsh_to_model(msh, names(1:nmat), mats(1:nmat), lines(1:nmat), d%file, &
+                                               nnode_req, m, d%errors)
+      ok = d%errors%n == n0
+   end subroutine read_mesh_block
+
+   !> Path of a mesh file named in a deck: relative to the deck's folder.
+   pure function mesh_path(deck_file, file) result(p)
+      character(len=*), intent(in) :: deck_file, file
+      character(len=:), allocatable :: p
+      integer :: k
+      logical :: absolute
+      absolute = .false.
+      if (len(file) > 0) absolute = file(1:1) == '/'
+      k = index(deck_file, '/', back=.true.)
+      if (absolute .or. k == 0) then
+         p = file
+      else
+         p = deck_file(1:k)//file
+      end if
+   end function mesh_path
+
+   pure logical function same_name(a, b)
+      character(len=*), intent(in) :: a, b
+      integer :: i, ca, cb
+      same_name = .false.
+      if (len_trim(a) /= len_trim(b)) return
+      do i = 1, len_trim(a)
+         ca = iachar(a(i:i))
+         cb = iachar(b(i:i))
+         if (ca >= 97 .and. ca <= 122) ca = ca - 32
+         if (cb >= 97 .and. cb <= 122) cb = cb - 32
+         if (ca /= cb) return
+      end do
+      same_name = .true.
+   end function same_name
+end module mesh_block

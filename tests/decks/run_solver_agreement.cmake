@@ -1,0 +1,37 @@
+# Run one deck with the skyline and the UMFPACK solver and compare the
+# displacements (compare_results.py, relative 1e-10).  When GEO is given, the
+# deck and its .geo are copied to WORK and the .msh is made there with gmsh
+# first, so that nothing is generated in the source tree.
+#   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCOMPARE=... [-DGEO=... -DGMSH=...] -P ...
+get_filename_component(name "${DECK}" NAME_WE)
+set(dir "${WORK}/${name}")
+file(REMOVE_RECURSE "${dir}")
+file(MAKE_DIRECTORY "${dir}")
+if(GEO)
+  file(COPY "${DECK}" "${GEO}" DESTINATION "${dir}")
+  get_filename_component(deck_name "${DECK}" NAME)
+  get_filename_component(geo_name "${GEO}" NAME)
+  get_filename_component(geo_base "${GEO}" NAME_WE)
+  set(deck "${dir}/${deck_name}")
+  execute_process(COMMAND "${GMSH}" -2 -format msh41 "${dir}/${geo_name}" -o "${dir}/${geo_base}.msh"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc STREQUAL "0")
+    message(FATAL_ERROR "gmsh failed on ${geo_name} (${rc}):\n${out}\n${err}")
+  endif()
+else()
+  set(deck "${DECK}")
+endif()
+foreach(solver skyline umfpack)
+  execute_process(COMMAND "${EXE}" "${deck}" -q -s ${solver} -o "${dir}/${name}_${solver}.h5"
+                  -l "${dir}/${name}_${solver}.lis"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc STREQUAL "0")
+    message(FATAL_ERROR "kontakt2d -s ${solver} failed (${rc}):\n${out}\n${err}")
+  endif()
+endforeach()
+execute_process(COMMAND "${PYTHON}" "${COMPARE}" "${dir}/${name}_skyline.h5" "${dir}/${name}_umfpack.h5"
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc STREQUAL "0")
+  message(FATAL_ERROR "skyline and umfpack disagree on ${name}:\n${out}\n${err}")
+endif()
+message(STATUS "${name}: ${out}")
