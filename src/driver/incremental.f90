@@ -95,6 +95,8 @@ module incremental
       logical :: condensed = .false.               !! bodies condensed onto the contact equations
       logical :: system_current = .false.          !! the solver holds the factors of the current system
       type(condensed_t) :: cond
+      real(dp), allocatable :: spacing(:)          !! (npair) distance to the nearest other pair
+      logical :: warned_closure = .false.
    end type analysis_t
 
    !> Outcome of one attempt at an increment (nothing committed yet).
@@ -268,6 +270,7 @@ contains
             if (an%has_contact) call commit_increment(m%contact, res%contact)
             res%disp = res%disp + att%du
             call record_step(res, att, an%has_contact, m, res%contact)
+            if (an%has_contact) call method_warnings(an, m, res, nstep)
             call finish_step(m, an, res, rf, lu, have_lis, lis_level, opts, body, nbody, fext, ve_old, force_scale, &
                              nstep, inc, frac, cuts, m%lambda(:, inc - 1) + (m%lambda(:, inc) - m%lambda(:, inc - 1))*frac, &
                              inc == m%nincs .and. frac >= 1.0_dp - 1.0e-12_dp, t0, rate, status)
@@ -283,6 +286,13 @@ contains
          if (.not. opts%quiet) then
             write (stdout, '(a)') repeat('-', 78)
             write (stdout, '(a)') ' Completed '//itoa(res%completed)//' increment(s); results in '//res%results_path
+         end if
+         ! the drift of the paper's explicit scheme (SPEC §4.2), so that it is never silent
+         if (an%has_contact .and. .not. an%returning .and. res%completed > 0) then
+            if (maxval(res%drift) > 0.05_dp) write (stderr, '(a)') 'kontakt2d: note: the incremental scheme '// &
+               'left normal spring forces up to '//rtoa(100.0_dp*maxval(res%drift), '(f6.1)')//' % (increment '// &
+               itoa(maxloc(res%drift, 1))//') off the interface law (attribute law_drift); more increments '// &
+               'reduce this, CONTACT SCHEME NEWTON removes it'
          end if
       else
          call rf%set_status('failed at increment '//itoa(res%completed + 1)//': '//status%message)
@@ -304,7 +314,7 @@ contains
       type(numbering_report_t), intent(out) :: numbering
       type(status_t), intent(inout) :: status
       integer, allocatable :: xadj(:), adjncy(:), links(:, :)
-      integer :: j
+      integer :: j, k
 
       an%has_contact = m%contact%active
       an%npair = size(m%contact%pairs)
@@ -338,6 +348,14 @@ contains
       an%kstore = 0.0_dp
       do j = 1, an%npair
          an%peq(:, j) = [an%map%id(:, m%contact%pairs(j)%node_a), an%map%id(:, m%contact%pairs(j)%node_b)]
+      end do
+      allocate (an%spacing(an%npair))
+      an%spacing = huge(1.0_dp)
+      do j = 1, an%npair
+         do k = 1, an%npair
+            if (k == j) cycle
+            an%spacing(j) = min(an%spacing(j), norm2(m%contact%pairs(k)%position - m%contact%pairs(j)%position))
+         end do
       end do
       an%condensed = .false.
       if (an%has_contact) then
@@ -665,6 +683,33 @@ contains
                          'OPTIONS AUTOINC')
       end if
    end subroutine failed_convergence
+
+   !> Warning when the method is used outside its comfort zone (once per
+   !! run): closures above 10 % of the pair spacing (very soft roughness: the
+   !! small-displacement springs of node-to-node contact no longer describe
+   !! the geometry).
+   subroutine method_warnings(an, m, res, nstep)
+      type(analysis_t), intent(inout) :: an
+      type(model_t), intent(in) :: m
+      type(run_result_t), intent(in) :: res
+      integer, intent(in) :: nstep
+      integer :: j
+      if (.not. an%warned_closure) then
+         do j = 1, an%npair
+            if (.not. res%contact%s(j)%closed) cycle
+            if (res%contact%s(j)%un > 0.1_dp*an%spacing(j)) then
+               an%warned_closure = .true.
+               write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(nstep)//': the closure of pair '// &
+                  itoa(j)//' ('//rtoa(res%contact%s(j)%un)//') exceeds 10 % of the pair spacing ('// &
+                  rtoa(an%spacing(j))//'): the roughness is very soft for this mesh and the '// &
+                  'small-displacement contact springs no longer describe the geometry'
+               exit
+            end if
+         end do
+      end if
+      associate (unused => m)
+      end associate
+   end subroutine method_warnings
 
    !> Append the figures of an accepted step.
    subroutine record_step(res, att, has_contact, m, st)
