@@ -184,14 +184,18 @@ def write_csv(out, name, header, rows):
 
 def md_table(title, header, rows, fmt=None):
     fmt = fmt or {}
-    lines = ["### " + title, "", "| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+
+    def esc(t):
+        return str(t).replace("|", "\\|")
+    lines = ["### " + title, "", "| " + " | ".join(esc(h) for h in header) + " |",
+             "|" + "|".join("---" for _ in header) + "|"]
     for r in rows:
         cells = []
         for h, v in zip(header, r):
             if isinstance(v, float):
                 cells.append("—" if math.isnan(v) else (fmt.get(h, "%.3f") % v))
             else:
-                cells.append(str(v))
+                cells.append(esc(v))
         lines.append("| " + " | ".join(cells) + " |")
     MARKDOWN.append("\n".join(lines) + "\n")
 
