@@ -75,6 +75,7 @@ module incremental
       integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
       character(len=:), allocatable :: results_path
       logical :: reported = .false.              !! a failure was already printed
+      integer :: warnings = 0                    !! warnings printed about the method (closure, chatter)
    end type run_result_t
 
    !> Everything the increment loop works with.
@@ -97,6 +98,7 @@ module incremental
       type(condensed_t) :: cond
       real(dp), allocatable :: spacing(:)          !! (npair) distance to the nearest other pair
       logical :: warned_closure = .false.
+      logical :: warned_chatter = .false.
    end type analysis_t
 
    !> Outcome of one attempt at an increment (nothing committed yet).
@@ -657,8 +659,8 @@ contains
       detail = status%message(k + 1:)
       if (k > 0) detail = status%message(k + 2:)
       status%message = 'singular or unrestrained model at '//an%map%describe(ieq)//': '//detail
-      if (an%has_contact) status%message = status%message//'; a body held only by contact '// &
-                                           'springs has no support once they open'
+      if (an%has_contact) status%message = status%message//'; a body held only by contact springs '// &
+                                           'has no support once they open (normal) or slip (tangential)'
    end subroutine describe_singular
 
    !> An attempt that ended without convergence: a RETURN increment out of
@@ -691,7 +693,7 @@ contains
    subroutine method_warnings(an, m, res, nstep)
       type(analysis_t), intent(inout) :: an
       type(model_t), intent(in) :: m
-      type(run_result_t), intent(in) :: res
+      type(run_result_t), intent(inout) :: res
       integer, intent(in) :: nstep
       integer :: j
       if (.not. an%warned_closure) then
@@ -699,6 +701,7 @@ contains
             if (.not. res%contact%s(j)%closed) cycle
             if (res%contact%s(j)%un > 0.1_dp*an%spacing(j)) then
                an%warned_closure = .true.
+               res%warnings = res%warnings + 1
                write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(nstep)//': the closure of pair '// &
                   itoa(j)//' ('//rtoa(res%contact%s(j)%un)//') exceeds 10 % of the pair spacing ('// &
                   rtoa(an%spacing(j))//'): the roughness is very soft for this mesh and the '// &
@@ -706,6 +709,13 @@ contains
                exit
             end if
          end do
+      end if
+      if (.not. an%warned_chatter .and. res%contact%chatter) then
+         an%warned_chatter = .true.
+         res%warnings = res%warnings + 1
+         write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(nstep)//': contact springs kept switching '// &
+            'their states (chatter); their states were frozen after '//itoa(6)//' changes and the increment '// &
+            'accepted; use smaller increments or OPTIONS AUTOINC'
       end if
       associate (unused => m)
       end associate
