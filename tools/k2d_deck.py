@@ -26,9 +26,14 @@ def f10(x):
         if len(s) <= 10 and abs(float(s) - x) <= 1e-9 * max(1.0, abs(x)):
             return s
     s = "%10.4e" % x
-    if len(s) > 10:
-        s = "%10.3e" % x
-    return s
+    if len(s) <= 10 and abs(float(s) - x) <= 1e-12 * abs(x):
+        return s
+    # not exact in 10 columns: the most precise fixed or exponent form that fits
+    best = None
+    for s in ["%.*f" % (k, x) for k in range(8, -1, -1)] + ["%.*e" % (k, x) for k in range(5, 0, -1)]:
+        if len(s) <= 10 and (best is None or abs(float(s) - x) < abs(float(best) - x)):
+            best = s
+    return "%10s" % best
 
 
 def graded(a, b, n, ratio=1.0):
@@ -89,12 +94,87 @@ class Deck:
                     c += [nd(xm, ya), nd(xb, ym), nd(xm, yb), nd(xa, ym)]
                     if self.nnode == 9:
                         c.append(nd(xm, ym))
+                if mapping is not None and self._signed_area(c[:4]) < 0.0:
+                    # the mapping mirrors the block: number the corners anticlockwise again
+                    c = self._reverse(c)
+                if quad:
                     self.elements.append((mat, c, body))
                 elif self.nnode == 3:
                     self.elements.append((mat, [c[0], c[1], c[2]], body))
                     self.elements.append((mat, [c[0], c[2], c[3]], body))
                 else:
                     self.elements.append((mat, c, body))
+
+    def _signed_area(self, corners):
+        pts = [self.nodes[k - 1][:2] for k in corners]
+        return 0.5 * sum(pts[i][0] * pts[(i + 1) % len(pts)][1] - pts[(i + 1) % len(pts)][0] * pts[i][1]
+                         for i in range(len(pts)))
+
+    @staticmethod
+    def _reverse(c):
+        """The same quadrilateral numbered the other way round (corners 1 4 3 2, midsides 8 7 6 5)."""
+        out = [c[0], c[3], c[2], c[1]]
+        if len(c) >= 8:
+            out += [c[7], c[6], c[5], c[4]]
+        if len(c) == 9:
+            out.append(c[8])
+        return out
+
+    def renumber(self, links=()):
+        """Renumber the nodes by reverse Cuthill-McKee over the element graph plus `links`
+        (pairs of nodes coupled otherwise, e.g. contact pairs), so that the skyline
+        solver's profile is small.  Call it after the mesh is complete and before any
+        node number is used (restraints, loads, surfaces)."""
+        if self.fixes or self.ties or self.edge_loads or self.point_loads or self.contact:
+            raise RuntimeError("renumber() must come before restraints, loads and contact cards")
+        n = len(self.nodes)
+        adj = [set() for _ in range(n + 1)]
+        for mat, c, b in self.elements:
+            for a in c:
+                adj[a].update(c)
+        for a, b in links:
+            adj[a].add(b)
+            adj[b].add(a)
+        for k in range(1, n + 1):
+            adj[k].discard(k)
+        deg = [len(a) for a in adj]
+        seen = [False] * (n + 1)
+        order = []
+        while len(order) < n:
+            # start each component at a node of least degree (a pseudo-peripheral guess)
+            start = min((k for k in range(1, n + 1) if not seen[k]), key=lambda k: deg[k])
+            for _ in range(3):     # a few sweeps towards a peripheral node
+                level = {start: 0}
+                frontier = [start]
+                while frontier:
+                    nxt = []
+                    for a in frontier:
+                        for b in adj[a]:
+                            if b not in level and not seen[b]:
+                                level[b] = level[a] + 1
+                                nxt.append(b)
+                    frontier = nxt
+                far = max(level.values())
+                cand = min((k for k, lv in level.items() if lv == far), key=lambda k: deg[k])
+                if cand == start:
+                    break
+                start = cand
+            seen[start] = True
+            queue = [start]
+            head = 0
+            while head < len(queue):
+                a = queue[head]
+                head += 1
+                for b in sorted((b for b in adj[a] if not seen[b]), key=lambda k: deg[k]):
+                    seen[b] = True
+                    queue.append(b)
+            order += queue
+        order.reverse()
+        new = {old: k for k, old in enumerate(order, 1)}
+        self.nodes = [self.nodes[old - 1] for old in order]
+        self.index = {key: new[v] for key, v in self.index.items()}
+        self.elements = [(mat, [new[a] for a in c], b) for mat, c, b in self.elements]
+        return new
 
     def nodes_where(self, body, pred):
         """Node numbers of `body` whose coordinates satisfy pred(x, y), sorted by x then y."""

@@ -4,10 +4,12 @@
 Reads only what docs/results-format.md documents.
 
     tools/plot_results.py RESULTS.h5 [-o PLOT.png] [--increment N]
-                          [--component mises|xx|yy|xy|zz] [--scale S]
+                          [--component mises|xx|yy|xy|zz] [--scale S] [--zoom auto|none]
 
 When the file holds contact results (group `contact` in the increment), a
-second panel shows the contact pressure and shear along the contact surface.
+second panel shows the contact pressure and shear along the contact surface
+(slipping pairs marked), and the mesh panel zooms on a contact zone that is
+small against the model (--zoom none shows the whole model).
 """
 import argparse
 import sys
@@ -65,6 +67,8 @@ def main(argv=None):
     ap.add_argument("--increment", type=int, default=0, help="increment number (default: the last)")
     ap.add_argument("--component", default="mises", choices=["mises"] + list(COMPONENTS))
     ap.add_argument("--scale", type=float, default=None, help="displacement magnification (default: automatic)")
+    ap.add_argument("--zoom", default="auto", choices=["auto", "none"],
+                    help="auto: show the mesh around a contact zone that is small against the model")
     args = ap.parse_args(argv)
 
     with h5py.File(args.results, "r") as f:
@@ -85,13 +89,33 @@ def main(argv=None):
         title = title.decode() if isinstance(title, bytes) else str(title)
         ntype = int(f.attrs["ntype"])
         contact = None
-        if "contact" in g:
+        if "contact" in g and "contact" in f:
             c = g["contact"]
             contact = {k: c[k][...] for k in c.keys()}
+            # the pair definition (positions, areas) is written once, in /contact
+            for k in ("position", "area", "node_a", "node_b"):
+                contact[k] = f["contact"][k][...]
 
     size = max(np.ptp(xy[:, 0]), np.ptp(xy[:, 1]))
-    umax = np.abs(u).max()
-    scale = args.scale if args.scale is not None else (0.05 * size / umax if umax > 0 else 1.0)
+    window = None
+    if contact is not None and args.zoom == "auto":
+        # a contact zone small against the model: show the mesh around it
+        closed = contact["normal_state"] > 0
+        pts = contact["position"][closed] if closed.any() else contact["position"]
+        ext = max(np.ptp(pts[:, 0]), np.ptp(pts[:, 1]), 1e-12)
+        if ext < 0.1 * size:
+            c = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+            half = 1.5 * ext
+            window = (max(c[0] - half, xy[:, 0].min()), min(c[0] + half, xy[:, 0].max()),
+                      max(c[1] - half, xy[:, 1].min()), min(c[1] + half, xy[:, 1].max()))
+    if window is not None:
+        inside = ((xy[:, 0] >= window[0]) & (xy[:, 0] <= window[1]) & (xy[:, 1] >= window[2]) & (xy[:, 1] <= window[3]))
+        umax = np.abs(u[inside]).max() if inside.any() else np.abs(u).max()
+        span = window[1] - window[0]
+    else:
+        umax = np.abs(u).max()
+        span = size
+    scale = args.scale if args.scale is not None else (0.05 * span / umax if umax > 0 else 1.0)
     values = von_mises(s) if args.component == "mises" else s[:, COMPONENTS[args.component]]
     label = {"mises": "von Mises stress", "xx": "stress xx (rr)", "yy": "stress yy (zz)",
              "xy": "shear stress xy", "zz": "stress zz (hoop)"}[args.component]
@@ -100,12 +124,26 @@ def main(argv=None):
     fig, axes = plt.subplots(1, npanel, figsize=(7 * npanel, 6), squeeze=False)
     ax = axes[0, 0]
     d = xy + scale * u
-    tri = mtri.Triangulation(d[:, 0], d[:, 1], triangles(conn, nnode))
-    pc = ax.tripcolor(tri, values, shading="gouraud", cmap="viridis")
-    for ring in outline(conn, nnode):
+    tris = triangles(conn, nnode)
+    rings = outline(conn, nnode)
+    if window is not None:
+        # only the elements near the window (drawing is clipped to it anyway)
+        pad = 0.5 * (window[1] - window[0])
+        near = np.array([((xy[r, 0] >= window[0] - pad) & (xy[r, 0] <= window[1] + pad) &
+                          (xy[r, 1] >= window[2] - pad) & (xy[r, 1] <= window[3] + pad)).any() for r in rings])
+        rings = [r for r, k in zip(rings, near) if k]
+        tris = tris[np.repeat(near, [1 if n == 3 else 2 for n in nnode])]
+    tri = mtri.Triangulation(d[:, 0], d[:, 1], tris)
+    shown = np.unique(tris)
+    pc = ax.tripcolor(tri, values, shading="gouraud", cmap="viridis",
+                      vmin=values[shown].min(), vmax=values[shown].max())
+    for ring in rings:
         ax.plot(d[ring, 0], d[ring, 1], color="k", lw=0.3)
     fig.colorbar(pc, ax=ax, label=label)
     ax.set_aspect("equal")
+    if window is not None:
+        ax.set_xlim(window[0], window[1])
+        ax.set_ylim(window[2], window[3])
     ax.set_xlabel("r" if ntype == 3 else "x")
     ax.set_ylabel("z" if ntype == 3 else "y")
     ax.set_title(f"{title}\nincrement {int(key)}, load factor {np.round(lam, 4)}, displacements x {scale:.3g}",
@@ -114,14 +152,34 @@ def main(argv=None):
     if contact is not None:
         ax2 = axes[0, 1]
         pos = contact["position"]
-        order = np.argsort(pos[:, 0])
-        ax2.plot(pos[order, 0], contact["pressure"][order], "o-", label="normal pressure p_n")
-        ax2.plot(pos[order, 0], contact["shear"][order], "s-", label="shear stress p_T")
-        ax2.set_xlabel("r" if ntype == 3 else "x")
+        # abscissa: the coordinate along which the pairs spread most (x or r for a flat surface)
+        axis = 0 if np.ptp(pos[:, 0]) >= np.ptp(pos[:, 1]) else 1
+        xc = pos[:, axis]
+        order = np.argsort(xc)
+        xc = xc[order]
+        pn, pt = contact["pressure"][order], contact["shear"][order]
+        closed = contact["normal_state"][order] > 0
+        slip = closed & (contact["tangential_state"][order] == 2)
+        branch = closed & (contact["tangential_state"][order] == 1)
+        ax2.plot(xc, pn, "o-", ms=3, color="C0", label="normal pressure p_n")
+        ax2.plot(xc, pt, "s-", ms=3, color="C1", label="shear stress p_T")
+        if slip.any():
+            ax2.plot(xc[slip], pt[slip], "s", ms=6, color="C3", label="slipping pairs")
+        if branch.any():
+            ax2.plot(xc[branch], pt[branch], "s", ms=6, mfc="none", color="C2", label="hardening branch")
+        if (~closed).any():
+            ax2.plot(xc[~closed], np.zeros((~closed).sum()), "x", ms=4, color="0.5", label="open pairs")
+            # zoom on the closed part of a contact that opens towards its end
+            last = xc[closed].max() if closed.any() else xc.max()
+            ax2.set_xlim(xc.min() - 0.02 * (last - xc.min()), last + 0.25 * (last - xc.min()))
+        name = ("r" if ntype == 3 else "x") if axis == 0 else ("z" if ntype == 3 else "y")
+        ax2.set_xlabel(name + " of the pairs (node b)")
         ax2.set_ylabel("contact stress")
+        ax2.axhline(0.0, color="0.7", lw=0.8)
         ax2.grid(True, alpha=0.3)
-        ax2.legend()
-        ax2.set_title("contact stresses", fontsize=9)
+        ax2.legend(fontsize=8)
+        ax2.set_title("contact stresses: %d of %d pairs closed, %d slipping; sum F_n = %.6g"
+                      % (closed.sum(), len(closed), slip.sum(), contact["force_normal"].sum()), fontsize=9)
 
     out = args.output or args.results.rsplit(".", 1)[0] + ".png"
     fig.tight_layout()

@@ -2,14 +2,15 @@
 # Kontakt2D: the main job in one command.
 #   tools/run.sh [DECK] [kontakt2d options]
 # Installs missing Debian packages, builds (Release) if needed, solves DECK
-# (default: the example deck inputs/lame_cylinder.dat), writes the HDF5 results,
+# (default: inputs/punch_5_1.dat, the paper's example 5.1 with Coulomb friction
+# 0.2 -- Table 1, column 2, and Table 2), writes the HDF5 results,
 # the listing and a plot into results/<deck name>/ and says where they are.
 # A deck whose MESH block names a missing .msh gets it made by gmsh from the
 # .geo of the same name beside it.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
 
-deck=${1:-$K2D_ROOT/inputs/lame_cylinder.dat}
+deck=${1:-$K2D_ROOT/inputs/punch_5_1.dat}
 [ $# -gt 0 ] && shift
 if [ ! -f "$deck" ]; then k2d_log "no such deck: $deck"; exit 2; fi
 

@@ -26,7 +26,7 @@ module contact_algorithm
    use kinds, only: dp
    use contact_types, only: contact_def_t, interface_t, LAW_ROUGH, FRICTION_NONE, UPDATE_RETURN, &
                             SLIP_GROSS
-   use contact_laws, only: virgin_pressure, virgin_tangent, unloading_tangent, residual_closure, &
+   use contact_laws, only: virgin_pressure, virgin_closure, virgin_tangent, unloading_tangent, residual_closure, &
                            normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient, &
                            bilinear_return
    use contact_element, only: spring_stiffness, spring_kinematics, spring_forces
@@ -187,6 +187,20 @@ contains
       if (on_unloading) u = max(residual_closure(ua, pa, ifc%cn2, ifc%m2), 0.0_dp)
    end function reclose_threshold
 
+   !> Closure at pressure p on the branch a pair of mode md follows: the
+   !! unloading/reloading branch through its reversal point while p < p_A, the
+   !! virgin curve otherwise (inverse of normal_pressure).
+   pure real(dp) function branch_closure(ifc, md, p) result(u)
+      type(interface_t), intent(in) :: ifc
+      type(pair_mode_t), intent(in) :: md
+      real(dp), intent(in) :: p
+      if (md%on_unloading .and. p < md%pa) then
+         u = md%ua - ifc%cn2*(md%pa**ifc%m2 - p**ifc%m2)
+      else
+         u = virgin_closure(p, ifc%cn, ifc%m)
+      end if
+   end function branch_closure
+
    !> Position of pair j among the pairs of its interface (for per-pair R).
    pure integer function local_index(cdef, j) result(k)
       type(contact_def_t), intent(in) :: cdef
@@ -271,8 +285,16 @@ contains
                if (u > md%uthr .and. may_switch) then
                   md%closed = .true.
                   md%newly_closed = .true.
-                  p = max(normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa), pfloor)
-                  md%kn = pr%area*p/max(u - md%uthr, tiny(1.0_dp))
+                  ! the secant of its penetration; below the floor pressure, the secant to the
+                  ! floor point of its branch (p_min over the penetration itself would grow
+                  ! without bound as the penetration found by the trial solve goes to zero)
+                  p = normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa)
+                  if (p >= pfloor) then
+                     md%kn = pr%area*p/max(u - md%uthr, tiny(1.0_dp))
+                  else
+                     p = pfloor
+                     md%kn = pr%area*p/max(branch_closure(ifc, md, p) - md%uthr, tiny(1.0_dp))
+                  end if
                   md%kte = pr%area*tangential_stiffness(p, ifc%s, ifc%r_t(local_index(cdef, j)))
                   md%tstate = TS_STICK
                   call set_kt(ifc, md)

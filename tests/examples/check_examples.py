@@ -1,0 +1,188 @@
+#!/usr/bin/python3
+"""Regression checks of the paper's examples: coarse versions of the decks of
+tools/make_examples.py are run and their results checked against what the paper
+states (section 5), not against stored numbers.
+
+    check_examples.py punch|sphere|cylinder --exe KONTAKT2D --work DIR
+
+Exit code 0 when every check holds; each check prints one line.  Reads only
+what docs/results-format.md documents.
+"""
+import argparse
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+import make_examples as mx  # noqa: E402
+
+FAILED = []
+
+
+def check(ok, what, detail=""):
+    print("%s  %s%s" % ("PASS" if ok else "FAIL", what, ("  [" + detail + "]") if detail else ""))
+    if not ok:
+        FAILED.append(what)
+
+
+class Run:
+    """Write a deck with a make_examples generator, run it, keep the last increment."""
+
+    def __init__(self, args, name, fn, **kw):
+        deck = os.path.join(args.work, name + ".dat")
+        h5 = os.path.join(args.work, name + ".h5")
+        fn(deck, **kw)
+        p = subprocess.run([args.exe, deck, "-o", h5, "-q"], capture_output=True, text=True)
+        self.rc = p.returncode
+        self.stderr = p.stderr
+        if self.rc != 0:
+            print(p.stdout + p.stderr)
+        check(self.rc == 0, "%s runs to completion" % name)
+        with h5py.File(h5, "r") as f:
+            c = f["contact"]
+            self.x = c["position"][:, 0]
+            self.node_a = c["node_a"][...]
+            self.order = np.argsort(self.x)
+            incs = sorted(f["increments"])
+            self.steps = [{k: f["increments"][i]["contact"][k][...] for k in f["increments"][i]["contact"]}
+                          for i in incs]
+            for s, i in zip(self.steps, incs):
+                s["displacement"] = f["increments"][i]["displacement"][...]
+                s["load_factor"] = f["increments"][i].attrs["load_factor"][...]
+                s["violations"] = int(f["increments"][i].attrs["invariant_violations"])
+        self.x = self.x[self.order]
+        check(sum(s["violations"] for s in self.steps) == 0, "%s: no invariant violations" % name)
+
+    def last(self, key):
+        return self.steps[-1][key][self.order]
+
+
+def at(r, key, x):
+    return float(r.last(key)[np.argmin(np.abs(r.x - x))])
+
+
+# ---------------------------------------------------------------------------- 5.1
+def punch(args):
+    c2 = Run(args, "punch_col2", mx.punch, column=2)
+    c3 = Run(args, "punch_col3", mx.punch, column=3)
+    c5 = Run(args, "punch_col5", mx.punch, column=5)
+    for r, lab in ((c2, "Coulomb"), (c5, "frictionless")):
+        p = r.last("pressure")
+        check(int(np.argmax(p)) == len(p) - 1, "%s: the pressure peaks at the punch edge" % lab,
+              "p(0) = %.4f, p(edge) = %.4f" % (p[0], p[-1]))
+        fsum = float(np.sum(r.last("force_normal")))
+        check(abs(fsum / 600.0 - 1.0) < 1e-8, "%s: sum F_n = p0 B t / 2 = 600 N" % lab, "%.12g" % fsum)
+        check(bool(np.all(np.diff(r.last("slip")) > 0)), "%s: u_T grows from the centre to the edge" % lab)
+    st = c2.last("tangential_state")
+    up = c2.last("slip_irreversible")
+    slipping = list(np.round(c2.x[st == 2] / 50.0, 3))
+    check(slipping == [0.9, 0.95, 1.0], "Coulomb 0.2: the outer three nodes slip (Table 1, column 2)", str(slipping))
+    check(bool(np.all(up[st != 2] == 0.0)), "Coulomb 0.2: u_T^p is zero in the stick zone")
+    check(bool(np.all(up[st == 2] > 0.0) and np.all(np.diff(up[st == 2]) > 0.0)),
+          "Coulomb 0.2: u_T^p grows towards the edge in the slip zone", " ".join("%.3g" % v for v in 1e3 * up[st == 2]))
+    ratio = (c2.last("shear") / c2.last("pressure"))[st == 2]
+    check(bool(np.all(np.abs(ratio - 0.2) < 1e-6)), "Coulomb 0.2: p_T / p_n = 0.2 at the slipping nodes")
+    check(bool(np.all(c5.last("slip")[1:] > c2.last("slip")[1:])), "friction reduces u_T at every node")
+    up3 = c3.last("slip_irreversible")
+    check(int(np.sum(up3 > 0)) > int(np.sum(up > 0)) and float(up3[-1]) > float(up[-1]),
+          "Fredriksson (beta = 0.2): slip starts further in and u_T^p is larger than with Coulomb 0.2",
+          "%d vs %d nodes" % (np.sum(up3 > 0), np.sum(up > 0)))
+    check(float(c3.x[np.argmax(up3 > 0)]) / 50.0 <= 0.3 + 1e-9, "Fredriksson: slip from 2x/B <= 0.3 (Table 1, col. 3)")
+    # Bild 5: unloading leaves an irreversible closure at the edge
+    u = Run(args, "punch_unload", mx.punch, column=5, cn2=0.5, unload=True)
+    k = int(np.argmax(u.x))
+    closure = np.array([s["closure"][u.order][k] for s in u.steps])
+    press = np.array([s["pressure"][u.order][k] for s in u.steps])
+    imax = int(np.argmax([s["load_factor"][0] for s in u.steps]))
+    ures = 1e3 * closure[imax] - 0.5 * (mx.KGF * press[imax]) ** 0.5
+    closed = np.array([s["normal_state"][u.order][k] > 0 for s in u.steps])
+    check(ures > 0.0 and bool(np.all(closed[imax:] == (1e3 * closure[imax:] > ures - 1e-9))),
+          "Bild 5: the edge pair unloads along its branch and opens at the irreversible closure u_A - c_n2 p_A^m",
+          "u_res = %.3f um" % ures)
+    check(bool(np.all(np.diff(press[imax:][closed[imax:]]) < 0)), "Bild 5: the edge pressure falls while unloading")
+
+
+# ---------------------------------------------------------------------------- 5.2
+def contact_radius(r):
+    u, st = r.last("closure"), r.last("normal_state")
+    k = int(np.where(st > 0)[0].max())
+    return float(r.x[k] + (r.x[k + 1] - r.x[k]) * u[k] / (u[k] - u[k + 1]))
+
+
+def sphere(args):
+    kw = dict(update="NEWTON", nincs=4, hdiv=6.0, q=1.3, reach=4.0)
+    res = {}
+    for P in (200.0, 20000.0):
+        for cn in (None, 0.3, 0.8):
+            r = Run(args, "sphere_P%d_%s" % (P, cn), mx.sphere, P=P, cn=cn, **kw)
+            fsum = float(np.sum(r.last("force_normal")))
+            check(abs(fsum / P - 1.0) < 1e-8, "P = %g, c_n = %s: sum F_n = P" % (P, cn), "%.12g" % fsum)
+            res[(P, cn)] = (float(r.last("pressure")[0]), contact_radius(r), r.x[1] - r.x[0])
+    for P in (200.0, 20000.0):
+        a, p0, _ = mx.hertz_sphere(P)
+        ps, as_, h = res[(P, None)]
+        check(abs(ps / p0 - 1.0) < 0.05 and abs(as_ - a) < 2 * h,
+              "P = %g: the smooth (penalty) contact is Hertz's" % P, "p(0)/p0 = %.3f, a_c/a = %.3f" % (ps / p0, as_ / a))
+        p3, a3, _ = res[(P, 0.3)]
+        p8, a8, _ = res[(P, 0.8)]
+        check(p8 < p3 < ps, "P = %g: roughness lowers the peak, more for larger c_n" % P,
+              "%.1f > %.1f > %.1f" % (ps, p3, p8))
+        check(a8 > a3 > as_, "P = %g: roughness widens the contact, more for larger c_n" % P,
+              "%.3f < %.3f < %.3f" % (as_, a3, a8))
+    for cn in (0.3, 0.8):
+        lo = res[(200.0, cn)][0] / res[(200.0, None)][0]
+        hi = res[(20000.0, cn)][0] / res[(20000.0, None)][0]
+        alo = res[(200.0, cn)][1] / res[(200.0, None)][1]
+        ahi = res[(20000.0, cn)][1] / res[(20000.0, None)][1]
+        check(lo < hi < 1.0 and alo > ahi > 1.0, "c_n = %g: the roughness effect shrinks as the load grows" % cn,
+              "p(0)/p_smooth %.3f -> %.3f, a_c/a_smooth %.3f -> %.3f" % (lo, hi, alo, ahi))
+
+
+# ---------------------------------------------------------------------------- 5.3
+def cylinder(args):
+    spread = {}
+    for P in (1.0e4, 1.0e6):
+        pm = P / (np.pi * (mx.CYL_RA ** 2 - mx.CYL_RI ** 2))
+        for cn in (0.2, 1.0):
+            r = Run(args, "cyl_%g_%g" % (P, cn), mx.cylinder, P=P, cn=cn, h=2.5)
+            p = r.last("pressure") / pm
+            spread[(P, cn)] = float(p.max() - p.min())
+            check(int(np.argmax(p)) == len(p) - 1 and p[0] > p[len(p) // 2],
+                  "P = %g, c_n = %g: the pressure peaks at both edges of the annulus, highest outside" % (P, cn),
+                  "p/p_m: %.3f ... %.3f ... %.3f" % (p[0], p[len(p) // 2], p[-1]))
+            fsum = float(np.sum(r.last("force_normal")))
+            check(abs(fsum / P - 1.0) < 1e-8, "P = %g, c_n = %g: sum F_n = P" % (P, cn))
+            ft, fn = r.last("force_tangential"), r.last("force_normal")
+            check(bool(np.all(np.abs(ft) <= 0.3 * fn * (1 + 1e-10))), "P = %g, c_n = %g: |p_T| <= 0.3 p_n" % (P, cn))
+            uz = r.steps[-1]["displacement"][r.node_a - 1, 1]
+            check(float(np.ptp(uz)) <= 1e-12 * abs(float(uz[0])), "P = %g, c_n = %g: the cylinder moves rigidly" % (P, cn))
+    for P in (1.0e4, 1.0e6):
+        check(spread[(P, 1.0)] < spread[(P, 0.2)], "P = %g: larger c_n gives a more uniform pressure" % P,
+              "spread %.3f (c_n = 1) < %.3f (c_n = 0.2)" % (spread[(P, 1.0)], spread[(P, 0.2)]))
+    for cn in (0.2, 1.0):
+        check(spread[(1.0e4, cn)] < spread[(1.0e6, cn)],
+              "c_n = %g: the lower load gives the more uniform pressure (roughness matters more)" % cn)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("example", choices=["punch", "sphere", "cylinder"])
+    ap.add_argument("--exe", required=True)
+    ap.add_argument("--work", required=True)
+    args = ap.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    {"punch": punch, "sphere": sphere, "cylinder": cylinder}[args.example](args)
+    if FAILED:
+        print("%d check(s) failed" % len(FAILED))
+        return 1
+    print("all checks hold")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
