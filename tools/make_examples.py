@@ -352,7 +352,7 @@ CYL_RA = 50.0
 
 def cylinder(path, P, cn=0.44, e_half=4.0e4, nnode=4, h=0.5, rho_b=500.0, q=1.12, nincs=20,
              update="EXPLICIT", hardening="OFF", mu=0.3, smooth=False, pen=1.0e-8, title=None,
-             options=("CONDENSE  OFF",)):
+             options=()):
     """Example 5.3, axisymmetric (SPEC §6.3): a rigid hollow cylinder (annulus 25 <= r <= 50 mm)
     pressed by the force P onto a half-space (quarter disc of radius rho_b, outer boundary
     fixed).  The cylinder is rigid exactly: a layer of elements whose nodes all have u_r = 0

@@ -421,14 +421,18 @@ contains
       call body_diagonal(m, an, diag)
       allocate (an%kref(4, 4, an%npair))
       do j = 1, an%npair
-         kref = 0.0_dp
+         ! the smallest diagonal of the pair's free equations: a tied or very stiff
+         ! side would otherwise give a reference spring far stiffer than any
+         ! contact spring, and K_c - K_ref would lose digits to cancellation
+         kref = huge(1.0_dp)
          n = 0
          do k = 1, 4
             if (an%peq(k, j) <= 0) cycle
-            kref = kref + diag(an%peq(k, j))
+            kref = min(kref, diag(an%peq(k, j)))
             n = n + 1
          end do
-         kref = 0.1_dp*kref/max(n, 1)
+         if (n == 0) kref = 1.0_dp
+         kref = 0.1_dp*kref
          call spring_matrix_iso(m%contact%pairs(j)%t, m%contact%pairs(j)%n, kref, an%kref(:, :, j))
          call an%solver%add_element(an%peq(:, j), an%kref(:, :, j))
       end do
