@@ -699,9 +699,10 @@ contains
    end subroutine failed_convergence
 
    !> Warning when the method is used outside its comfort zone (once per
-   !! run): closures above 10 % of the pair spacing (very soft roughness: the
-   !! small-displacement springs of node-to-node contact no longer describe
-   !! the geometry).
+   !! run): a tangential relative displacement above 10 % of the pair spacing
+   !! (node-to-node pairs assume small sliding: the partners must stay
+   !! opposite each other; very soft roughness or a large tangential load
+   !! breaks that).
    subroutine method_warnings(an, m, res, nstep)
       type(analysis_t), intent(inout) :: an
       type(model_t), intent(in) :: m
@@ -710,14 +711,13 @@ contains
       integer :: j
       if (.not. an%warned_closure) then
          do j = 1, an%npair
-            if (.not. res%contact%s(j)%closed) cycle
-            if (res%contact%s(j)%un > 0.1_dp*an%spacing(j)) then
+            if (abs(res%contact%s(j)%ut) > 0.1_dp*an%spacing(j)) then
                an%warned_closure = .true.
                res%warnings = res%warnings + 1
-               write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(nstep)//': the closure of pair '// &
-                  itoa(j)//' ('//rtoa(res%contact%s(j)%un)//') exceeds 10 % of the pair spacing ('// &
-                  rtoa(an%spacing(j))//'): the roughness is very soft for this mesh and the '// &
-                  'small-displacement contact springs no longer describe the geometry'
+               write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(nstep)//': pair '//itoa(j)// &
+                  ' has slid '//rtoa(abs(res%contact%s(j)%ut))//', more than 10 % of the pair spacing ('// &
+                  rtoa(an%spacing(j))//'): node-to-node contact assumes small sliding (the partners '// &
+                  'must stay opposite each other); refine the contact mesh or use stiffer roughness data'
                exit
             end if
          end do

@@ -57,6 +57,18 @@ def punch(name, scheme, incs, driven="pressure", start=None, comments=()):
     write(d, name, list(comments))
 
 
+def soft_roughness(name):
+    """A block pressed and sheared through a very soft rough layer."""
+    d = block_on_base("Stability: very soft roughness, pressed and sheared", 1, 4, fix_x_line=False)
+    d.edge_pressure("A", lambda x, y: abs(y - 10.0) < 1e-12, 1.0, pt=-0.1)
+    d.contact = ["UNITS     KGF_UM", "NORMAL        3000.0       0.5", "FRICTION  COULOMB         0.3",
+                 "HARDENING OFF", "SCHEME    NEWTON"] + surfaces(d)
+    d.increments = [(1, [0.05]), (19, [1.0])]
+    write(d, name, ["Very soft roughness (c_n = 3000, R from eq. 2.8): a shear of 0.1 N/mm2 on top slides the",
+                    "block by millimetres on a 2.5 mm pair spacing: node-to-node pairs no longer face each",
+                    "other, and the program warns."])
+
+
 def tangential_reversal(name, scheme):
     """V2-like block: normal force held, the contact face driven back and forth through slip."""
     d = block_on_base("Stability: tangential load reversal", 1, 4, E=1.0e9, fix_x_line=False)
@@ -104,9 +116,7 @@ if __name__ == "__main__":
        comments=["Very stiff roughness (c_n = 1e-6): springs 1e5 times stiffer than the block."])
     v1("s4_stiff_roughness_newton", "NEWTON", paper, cn=1.0e-6,
        comments=["The same with Newton iterations."])
-    v1("s5_soft_roughness", "NEWTON", paper, cn=3000.0,
-       comments=["Very soft roughness (c_n = 3000): closures of several millimetres, beyond the",
-                 "small-displacement springs' range: the program warns."])
+    soft_roughness("s5_soft_roughness")
     tangential_reversal("s7_tangential_reversal", "INCREMENTAL")
     tangential_reversal("s7_tangential_reversal_newton", "NEWTON")
     friction_only("s9_mu_zero", 0.0, False)
