@@ -25,7 +25,7 @@
 module contact_algorithm
    use kinds, only: dp
    use contact_types, only: contact_def_t, interface_t, LAW_ROUGH, FRICTION_NONE, UPDATE_RETURN, &
-                            SLIP_GROSS
+                            SLIP_GROSS, NEWCLOSED_TANGENT
    use contact_laws, only: virgin_pressure, virgin_closure, virgin_tangent, unloading_tangent, residual_closure, &
                            normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient, &
                            bilinear_return
@@ -289,7 +289,11 @@ contains
                   ! floor point of its branch (p_min over the penetration itself would grow
                   ! without bound as the penetration found by the trial solve goes to zero)
                   p = normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa)
-                  if (p >= pfloor) then
+                  if (cdef%opts%newly_closed == NEWCLOSED_TANGENT) then
+                     ! option: the tangent of the virgin curve at the floor pressure
+                     p = max(p, pfloor)
+                     md%kn = pr%area*virgin_tangent(p, ifc%cn, ifc%m)
+                  else if (p >= pfloor) then
                      md%kn = pr%area*p/max(u - md%uthr, tiny(1.0_dp))
                   else
                      p = pfloor
@@ -339,13 +343,14 @@ contains
             end if
 
             ! optional secant iteration of the first increment (SPEC §4.1)
+            ! (a secant update is no change of state: it does not count as a switch)
             if (first .and. cdef%opts%first_iterate .and. md%closed .and. .not. returning .and. &
-                .not. md%newly_closed .and. fn > 0.0_dp .and. may_switch) then
+                .not. md%newly_closed .and. fn > 0.0_dp) then
                pold = md%kn
                md%kn = pr%area*(fn/pr%area)**(1.0_dp - ifc%m)/ifc%cn
                if (abs(md%kn - pold) > 1.0e-10_dp*pold) then
                   fn = s%fn + md%kn*dun
-                  call flag(changed(j), md%nswitch, st%chatter)
+                  changed(j) = .true.
                end if
             end if
 

@@ -298,7 +298,7 @@ contains
             write (stdout, '(a)') ' Completed '//itoa(res%completed)//' increment(s); results in '//res%results_path
          end if
          ! the drift of the paper's explicit scheme (SPEC §4.2), so that it is never silent
-         if (an%has_contact .and. .not. an%returning .and. res%completed > 0) then
+         if (an%has_contact .and. .not. an%returning .and. res%completed > 0 .and. .not. opts%quiet) then
             if (maxval(res%drift) > 0.05_dp) write (stderr, '(a)') 'kontakt2d: note: the incremental scheme '// &
                'left normal spring forces up to '//rtoa(100.0_dp*maxval(res%drift), '(f6.1)')//' % (increment '// &
                itoa(maxloc(res%drift, 1))//') off the interface law (attribute law_drift); more increments '// &

@@ -13,7 +13,8 @@ module deck_contact
    use model, only: model_t
    use contact_types, only: LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, &
                             FRICTION_COULOMB, FRICTION_FREDRIKSSON, UNITS_KGF_UM, UNITS_N_UM, &
-                            UNITS_MODEL, UPDATE_EXPLICIT, UPDATE_RETURN, SLIP_IRREVERSIBLE, SLIP_GROSS
+                            UNITS_MODEL, UPDATE_EXPLICIT, UPDATE_RETURN, SLIP_IRREVERSIBLE, SLIP_GROSS, &
+                            NEWCLOSED_SECANT, NEWCLOSED_TANGENT
    use contact_definition, only: iface_spec_t, define_contact
    implicit none
    private
@@ -339,6 +340,24 @@ contains
                call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/FIRSTINC (columns 11-20) expected SECANT or ITERATE, '// &
                                'found "'//w//'"')
             end if
+         case ('NEWCLOSED')
+            call d%get_word(ic, 11, 20, 'CONTACT/NEWCLOSED', 'RULE', w, ok)
+            call d%get_real(ic, 21, 30, 'CONTACT/NEWCLOSED', 'PMIN', v1, ok, default=1.0e-3_dp)
+            call tail(ic, 31, 'SECANT or TANGENT and PMIN in columns 11-30', ok)
+            if (ok .and. w == 'SECANT') then
+               m%contact%opts%newly_closed = NEWCLOSED_SECANT
+            else if (ok .and. w == 'TANGENT') then
+               m%contact%opts%newly_closed = NEWCLOSED_TANGENT
+            else if (ok) then
+               call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/NEWCLOSED (columns 11-20) expected SECANT or TANGENT, '// &
+                               'found "'//w//'"')
+            end if
+            if (ok .and. .not. (v1 > 0.0_dp .and. v1 < 1.0_dp)) then
+               call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/NEWCLOSED: PMIN (columns 21-30) expected the floor '// &
+                               'pressure as a fraction of p_m in (0, 1), found '//rtoa(v1))
+            else if (ok) then
+               m%contact%opts%p_min_ratio = v1
+            end if
          case ('REPEATS')
             call d%get_int(ic, 11, 20, 'CONTACT/REPEATS', 'MAXREP', iv, ok)
             if (ok .and. (iv < 1 .or. iv > 10000)) then
@@ -364,7 +383,7 @@ contains
          case default
             call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT: unknown keyword "'//key//'" (expected INTERFACE, LAW, '// &
                             'UNITS, NORMAL, TANGENT, FRICTION, HARDENING, SLIP, SURFACE, PAIRS, TOLERANCE, SCHEME, '// &
-                            'UPDATE, CONVERGE, FIRSTINC, REPEATS or START)')
+                            'UPDATE, CONVERGE, FIRSTINC, NEWCLOSED, REPEATS or START)')
          end select
       end do
 

@@ -16,7 +16,8 @@ module contact_types
    public :: interface_t, contact_pair_t, contact_options_t, contact_def_t
    public :: LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, FRICTION_COULOMB, FRICTION_FREDRIKSSON, &
              UNITS_KGF_UM, UNITS_N_UM, UNITS_MODEL, UPDATE_EXPLICIT, UPDATE_RETURN, &
-             SLIP_IRREVERSIBLE, SLIP_GROSS, KGF_PER_NMM2, units_name, friction_name, update_name, slip_name
+             SLIP_IRREVERSIBLE, SLIP_GROSS, NEWCLOSED_SECANT, NEWCLOSED_TANGENT, KGF_PER_NMM2, &
+             units_name, friction_name, update_name, slip_name
 
    integer, parameter :: LAW_ROUGH = 1             !! the paper's rough interface (springs)
    integer, parameter :: LAW_IDEAL = 2             !! smooth contact with Coulomb friction (reference)
@@ -34,6 +35,9 @@ module contact_types
 
    integer, parameter :: SLIP_IRREVERSIBLE = 1     !! v_e from all irreversible slip (SPEC §2.3 a)
    integer, parameter :: SLIP_GROSS = 2            !! v_e from gross slip only (SPEC §2.3 b)
+
+   integer, parameter :: NEWCLOSED_SECANT = 1      !! a newly closed pair: secant of its penetration (SPEC §4.3)
+   integer, parameter :: NEWCLOSED_TANGENT = 2     !! ... or the virgin tangent at the floor pressure
 
    !> kgf/cm² per N/mm² (1 kgf/cm² = 0.0980665 N/mm²).
    real(dp), parameter :: KGF_PER_NMM2 = 1.0_dp/0.0980665_dp
@@ -94,6 +98,7 @@ module contact_types
       real(dp) :: tol_displacement = 1.0e-8_dp  !! relative last correction accepted by RETURN
       logical :: modified = .false.         !! RETURN with the stiffness of the first solution (modified Newton)
       real(dp) :: p_min_ratio = 1.0e-3_dp   !! floor of a newly closed pair's secant pressure, x p_m
+      integer :: newly_closed = NEWCLOSED_SECANT   !! stiffness rule for a pair that closes
    end type contact_options_t
 
    !> Everything the deck says about contact.
