@@ -16,8 +16,12 @@
 !!     until no spring changes its mode and the residual vanishes
 !!
 !! (for the paper's explicit update a repeat is the paper's repetition of the
-!! increment with new stiffnesses, solved for the correction).  Totals are sums
-!! of increments (eqs. 3.34-3.36).  Stresses, reactions and the contact
+!! increment with new stiffnesses, solved for the correction).  Ideal contact
+!! (augmented Lagrangian, contact_algorithm) adds an outer step to the same
+!! loop: once the modes settle and the residual vanishes, the multipliers are
+!! updated (Uzawa) and the loop goes on until the penetration is below its
+!! tolerance; every pass is one solution, all count against CONTACT REPEATS.
+!! Totals are sums of increments (eqs. 3.34-3.36).  Stresses, reactions and the contact
 !! quantities are written to the HDF5 file, which is flushed.
 !!
 !! A numerical failure stops the loop cleanly: every finished increment stays
@@ -35,10 +39,10 @@ module incremental
                        subtract_prescribed, restrained_forces, element_error
    use solid2d, only: element_stresses
    use quadrature, only: max_gp
-   use contact_types, only: UPDATE_RETURN, contact_pair_t
+   use contact_types, only: UPDATE_RETURN, contact_pair_t, MAX_PAIR_NODES, LAW_ROUGH, PAIR_RIGID
    use contact_algorithm, only: contact_state_t, contact_init, begin_increment, pair_matrix, &
                                 evaluate_pairs, commit_increment, pair_force_vector, law_drift, check_invariants, &
-                                NS_OPEN, NS_LOADING, NS_UNLOADING, TS_SLIP
+                                augment_multipliers, pair_dofs, NS_OPEN, NS_LOADING, NS_UNLOADING, TS_SLIP
    use restraint_check, only: find_bodies
    use results_hdf5, only: results_file_t, K2D_VERSION
    use listing, only: list_header, list_input, list_displacements, list_stresses, list_contact
@@ -71,6 +75,8 @@ module incremental
       real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
       real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
       integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
+      real(dp), allocatable :: penetration(:)    !! ideal contact: largest |u_n| (closed) or stick slip at the end
+      integer, allocatable :: augmentations(:)   !! ideal contact: multiplier updates per increment
       character(len=:), allocatable :: results_path
    end type run_result_t
 
@@ -90,8 +96,8 @@ contains
       real(dp), allocatable :: fcase(:, :, :), ucase(:, :, :), fext(:, :), du(:, :), ddu(:, :), rhs(:), fr(:, :)
       real(dp), allocatable :: dlam(:), carry(:), rvec(:, :), rpred(:, :), kstore(:, :, :), fsp(:, :)
       logical, allocatable :: restrained(:, :), changed(:)
-      integer :: ip, inc, idof, lu, ic, j, iter, nrep, npair
-      logical :: have_lis
+      integer :: ip, inc, idof, lu, ic, j, iter, nrep, npair, nd, k, nlink, maxrep
+      logical :: have_lis, augmented
       integer(hid_t) :: gid
       integer(kind=8) :: t0, t1, rate
       character(len=:), allocatable :: solver_name, lis_path, lis_level
@@ -122,10 +128,23 @@ contains
       lis_level = m%listing_level
 
       ! ---- equations (ties share equations), pattern with every pair, K_AB
-      allocate (order(m%npoin), links(2, npair))
-      order = [(ip, ip=1, m%npoin)]
+      nlink = 0
       do j = 1, npair
-         links(:, j) = [m%contact%pairs(j)%node_a, m%contact%pairs(j)%node_b]
+         nlink = nlink + (m%contact%pairs(j)%nn*(m%contact%pairs(j)%nn - 1))/2
+      end do
+      allocate (order(m%npoin), links(2, nlink))
+      order = [(ip, ip=1, m%npoin)]
+      nlink = 0
+      do j = 1, npair
+         ! all nodes of a pair couple: node a with its master side (node b, the
+         ! nodes of B under its tributary zone, or a rigid body's reference
+         ! node), and those master nodes with each other
+         do k = 2, m%contact%pairs(j)%nn
+            do ip = 1, k - 1
+               nlink = nlink + 1
+               links(:, nlink) = [m%contact%pairs(j)%nodes(ip), m%contact%pairs(j)%nodes(k)]
+            end do
+         end do
       end do
       call build_dof_map(m, order, map, m%ties)
       call build_node_graph(m, links, nxadj, nadj)
@@ -150,6 +169,9 @@ contains
                 ddu(2, m%npoin), rhs(map%neq), fr(2, m%npoin), dlam(m%ncase), carry(map%neq), fsp(2, m%npoin))
       allocate (res%iterations(m%nincs), res%repeats(m%nincs), res%residual(m%nincs), res%drift(m%nincs))
       allocate (res%imbalance(m%nincs), res%violations(m%nincs), ve_old(npair))
+      allocate (res%penetration(m%nincs), res%augmentations(m%nincs))
+      res%penetration = 0.0_dp
+      res%augmentations = 0
       res%imbalance = 0.0_dp
       res%violations = 0
       force_scale = tiny(1.0_dp)
@@ -163,16 +185,35 @@ contains
       carry = 0.0_dp
 
       ! ---- contact: initial states, start pressure of eq. (4.1)
-      allocate (rvec(4, npair), rpred(4, npair), kstore(4, 4, npair), changed(npair), peq(4, npair))
+      nd = 2*MAX_PAIR_NODES
+      allocate (rvec(nd, npair), rpred(nd, npair), kstore(nd, nd, npair), changed(npair), peq(nd, npair))
+      peq = 0
+      rvec = 0.0_dp
+      rpred = 0.0_dp
+      kstore = 0.0_dp
       do j = 1, npair
-         peq(:, j) = [map%id(:, m%contact%pairs(j)%node_a), map%id(:, m%contact%pairs(j)%node_b)]
+         do k = 1, m%contact%pairs(j)%nn
+            peq(2*k - 1:2*k, j) = map%id(:, m%contact%pairs(j)%nodes(k))
+         end do
       end do
       gap_tol = m%contact%opts%gap_tol
       if (gap_tol < 0.0_dp) gap_tol = 1.0e-9_dp*model_size(m)
       call contact_init(m%contact, gap_tol, res%contact)
+      ! the cap on solutions per increment: CONTACT REPEATS, or 30 for the
+      ! rough springs and 100 when the augmented Lagrangian of an ideal
+      ! interface has to converge too
+      maxrep = max(1, m%contact%opts%max_repeats)
+      if (res%contact%has_ideal .and. .not. m%contact%opts%repeats_given) maxrep = 100
       allocate (body(m%npoin))
       call find_bodies(m, reshape([integer ::], [2, 0]), body, nbody)
-      if (has_contact) then
+      ! a rigid body's reference node belongs to no element: a body of its own
+      do j = 1, npair
+         if (m%contact%pairs(j)%kind /= PAIR_RIGID) cycle
+         if (body(m%contact%pairs(j)%node_b) > 0) cycle
+         nbody = nbody + 1
+         body(m%contact%pairs(j)%node_b) = nbody
+      end do
+      if (has_contact .and. res%contact%has_rough) then
          call start_pressure(m, fcase, m%lambda(:, 1) - m%lambda(:, 0), res%contact, status)
          if (.not. status%ok()) return
       end if
@@ -238,7 +279,8 @@ contains
          ddu = du           ! first solve: prescribed increments at the restrained dofs
          nrep = 0
          converged = .false.
-         do iter = 1, max(1, m%contact%opts%max_repeats)
+         augmented = .false.
+         do iter = 1, maxrep
             if (need_factor) then
                call solver%restore_base()
                do j = 1, npair
@@ -255,7 +297,13 @@ contains
                end if
                need_factor = has_contact .and. returning
             end if
-            if (iter == 1) call subtract_contact_prescribed(peq, kstore, m%contact%pairs, ddu, rhs)
+            if (iter == 1) then
+               call subtract_contact_prescribed(peq, kstore, m%contact%pairs, ddu, rhs)
+               ! an increment driven only through springs of prescribed nodes (a
+               ! rigid body's reference node belongs to no element) has no other
+               ! force to measure its out-of-balance force against
+               if (fscale <= 1.0e-300_dp .and. map%neq > 0) fscale = max(maxval(abs(rhs)), 1.0e-300_dp)
+            end if
             call solver%solve(rhs, status)
             if (.not. status%ok()) exit
             do ip = 1, m%npoin
@@ -270,19 +318,12 @@ contains
             end if
             ! predicted spring forces (the linearisation the solve used) ...
             do j = 1, npair
-               rpred(:, j) = rvec(:, j) + matmul(kstore(:, :, j), pair_values(ddu, m%contact%pairs(j)))
+               k = 2*m%contact%pairs(j)%nn
+               rpred(1:k, j) = rvec(1:k, j) + matmul(kstore(1:k, 1:k, j), pair_values(ddu, m%contact%pairs(j), k))
             end do
             ! ... against the actual ones, after the mode checks
             call evaluate_pairs(m%contact, res%contact, du, changed, inc == 1)
-            do j = 1, npair
-               call pair_force_vector(m%contact, j, res%contact%fn(j), res%contact%ft(j), rvec(:, j))
-            end do
-            rhs = 0.0_dp
-            do j = 1, npair
-               call scatter_free(peq(:, j), rpred(:, j) - rvec(:, j), rhs)
-            end do
-            rnorm = 0.0_dp
-            if (map%neq > 0) rnorm = maxval(abs(rhs))/fscale
+            call residual_forces()
             ddu = 0.0_dp
             if (any(changed)) then
                nrep = nrep + 1
@@ -290,22 +331,47 @@ contains
                cycle
             end if
             if (rnorm <= m%contact%opts%tol_residual) then
-               converged = .true.
-               exit
+               if (.not. res%contact%has_ideal) then
+                  converged = .true.
+                  exit
+               end if
+               ! ideal contact: the modes hold and the bodies balance the
+               ! forces of the current multipliers; converged when the
+               ! penetrations are within tolerance, else an Uzawa update and
+               ! the forces of the new multipliers drive the next solution
+               call augment_multipliers(m%contact, res%contact, augmented)
+               if (augmented) then
+                  converged = .true.
+                  exit
+               end if
+               call evaluate_pairs(m%contact, res%contact, du, changed, inc == 1)
+               call residual_forces()
+               if (any(changed)) then
+                  nrep = nrep + 1
+                  need_factor = .true.
+               end if
             end if
          end do
          if (.not. status%ok()) exit
          res%iterations(inc) = iter
-         if (iter > max(1, m%contact%opts%max_repeats)) res%iterations(inc) = iter - 1
+         if (iter > maxrep) res%iterations(inc) = iter - 1
          res%repeats(inc) = nrep
+         res%augmentations(inc) = res%contact%augmentations
+         res%penetration(inc) = res%contact%violation
          if (has_contact) then
             res%residual(inc) = rnorm
             carry = rhs
-            if (.not. converged .and. (returning .or. any(changed))) then
+            if (.not. converged .and. (returning .or. any(changed) .or. res%contact%has_ideal)) then
                if (any(changed)) then
                   call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                                   itoa(res%iterations(inc))//' solutions (contact states keep changing); '// &
                                   'reduce the increment size or raise CONTACT REPEATS')
+               else if (res%contact%has_ideal .and. rnorm <= m%contact%opts%tol_residual) then
+                  call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
+                                  itoa(res%iterations(inc))//' solutions: ideal contact still penetrates or '// &
+                                  'slips by '//rtoa(res%contact%violation)//' > the tolerance '// &
+                                  rtoa(res%contact%tol_pen)//' after '//itoa(res%contact%augmentations)// &
+                                  ' multiplier updates; raise CONTACT REPEATS or the AUGMENTED factor')
                else
                   call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                                   itoa(res%iterations(inc))//' solutions (relative out-of-balance force '// &
@@ -326,8 +392,9 @@ contains
          fsp = 0.0_dp
          do j = 1, npair
             call pair_force_vector(m%contact, j, res%contact%s(j)%fn, res%contact%s(j)%ft, rvec(:, j))
-            fsp(:, m%contact%pairs(j)%node_a) = fsp(:, m%contact%pairs(j)%node_a) + rvec(1:2, j)
-            fsp(:, m%contact%pairs(j)%node_b) = fsp(:, m%contact%pairs(j)%node_b) + rvec(3:4, j)
+            do k = 1, m%contact%pairs(j)%nn
+               fsp(:, m%contact%pairs(j)%nodes(k)) = fsp(:, m%contact%pairs(j)%nodes(k)) + rvec(2*k - 1:2*k, j)
+            end do
          end do
          res%react = 0.0_dp
          where (restrained) res%react = fr + fsp - fext
@@ -335,7 +402,7 @@ contains
          ! invariants (SPEC §7): every body in equilibrium under loads, reactions
          ! and spring forces; no tension; |F_T| <= mu F_n; v_e non-decreasing
          force_scale = max(force_scale, maxval(abs(fext)), maxval(abs(res%react)), maxval(abs(fsp)))
-         res%imbalance(inc) = body_imbalance(body, nbody, fext + res%react - fsp, force_scale)
+         res%imbalance(inc) = body_imbalance(body, nbody, fext + res%react - fsp, force_scale, m%ntype == 3)
          nbad = 0
          imsg = ''
          if (has_contact) call check_invariants(res%contact, ve_old, nbad, imsg)
@@ -358,6 +425,8 @@ contains
             call rf%write_real2(gid, 'reaction', res%react, err)
             if (has_contact) call rf%attr_real0(gid, 'residual', res%residual(inc), err)
             if (has_contact) call rf%attr_real0(gid, 'law_drift', res%drift(inc), err)
+            if (res%contact%has_ideal) call rf%attr_real0(gid, 'penetration', res%penetration(inc), err)
+            if (res%contact%has_ideal) call rf%attr_int(gid, 'augmentations', res%augmentations(inc), err)
             call rf%attr_real0(gid, 'imbalance', res%imbalance(inc), err)
             call rf%attr_int(gid, 'invariant_violations', res%violations(inc), err)
             if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(inc))
@@ -405,19 +474,39 @@ contains
       call rf%close()
       if (have_lis) close (lu)
       call solver%free()
+   contains
+      !> Internal-force vectors of the pairs for their current forces, and the
+      !! out-of-balance force: the forces the solve predicted minus these.
+      subroutine residual_forces()
+         integer :: jp, nv
+         do jp = 1, npair
+            call pair_force_vector(m%contact, jp, res%contact%fn(jp), res%contact%ft(jp), rvec(:, jp))
+         end do
+         rhs = 0.0_dp
+         do jp = 1, npair
+            nv = 2*m%contact%pairs(jp)%nn
+            call scatter_free(peq(1:nv, jp), rpred(1:nv, jp) - rvec(1:nv, jp), rhs)
+         end do
+         rnorm = 0.0_dp
+         if (map%neq > 0) rnorm = maxval(abs(rhs))/fscale
+      end subroutine residual_forces
    end subroutine run_analysis
 
    !> Largest |sum of the forces on a body| relative to the force scale of the run.
-   pure real(dp) function body_imbalance(body, nbody, f, scale) result(worst)
+   !! In axisymmetry only the axial sum: radial ring forces are balanced by the
+   !! hoop stresses, not by each other.
+   pure real(dp) function body_imbalance(body, nbody, f, scale, axisymmetric) result(worst)
       integer, intent(in) :: body(:), nbody
       real(dp), intent(in) :: f(:, :)        !! (2, npoin) external + reactions - spring internal forces
       real(dp), intent(in) :: scale          !! largest nodal force seen so far
+      logical, intent(in) :: axisymmetric
       real(dp) :: total(2, max(nbody, 1))
       integer :: ip
       total = 0.0_dp
       do ip = 1, size(body)
          if (body(ip) > 0) total(:, body(ip)) = total(:, body(ip)) + f(:, ip)
       end do
+      if (axisymmetric) total(1, :) = 0.0_dp
       worst = maxval(abs(total))/scale
    end function body_imbalance
 
@@ -427,6 +516,7 @@ contains
       if (.not. allocated(m%ties)) allocate (m%ties(3, 0))
       if (.not. allocated(m%contact%pairs)) allocate (m%contact%pairs(0))
       if (.not. allocated(m%contact%ifaces)) allocate (m%contact%ifaces(0))
+      if (.not. allocated(m%contact%rigids)) allocate (m%contact%rigids(0))
       m%contact%active = size(m%contact%pairs) > 0
    end subroutine complete_model
 
@@ -435,21 +525,23 @@ contains
       model_size = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), maxval(m%coord(2, :)) - minval(m%coord(2, :)))
    end function model_size
 
-   !> The four dof values (a_x, a_y, b_x, b_y) of a pair from a nodal field.
-   pure function pair_values(v, pr) result(x)
+   !> The nd = 2 nn dof values (a_x, a_y, b_x, b_y, ...) of a pair from a nodal field.
+   pure function pair_values(v, pr, nd) result(x)
       real(dp), intent(in) :: v(:, :)
       type(contact_pair_t), intent(in) :: pr
-      real(dp) :: x(4)
-      x = [v(:, pr%node_a), v(:, pr%node_b)]
+      integer, intent(in) :: nd
+      real(dp) :: x(nd), y(2*MAX_PAIR_NODES)
+      y = pair_dofs(v, pr)
+      x = y(1:nd)
    end function pair_values
 
-   !> Add a pair's vector to the free equations.
+   !> Add a pair's vector to the free equations (entries with ieq <= 0 are skipped).
    pure subroutine scatter_free(ieq, v, b)
-      integer, intent(in) :: ieq(4)
-      real(dp), intent(in) :: v(4)
+      integer, intent(in) :: ieq(:)
+      real(dp), intent(in) :: v(:)
       real(dp), intent(inout) :: b(:)
       integer :: k
-      do k = 1, 4
+      do k = 1, size(ieq)
          if (ieq(k) > 0) b(ieq(k)) = b(ieq(k)) + v(k)
       end do
    end subroutine scatter_free
@@ -461,41 +553,55 @@ contains
       type(contact_pair_t), intent(in) :: pairs(:)
       real(dp), intent(in) :: u(:, :)
       real(dp), intent(inout) :: b(:)
-      real(dp) :: x(4)
-      integer :: j
+      real(dp), allocatable :: x(:)
+      integer :: j, nd
       do j = 1, size(pairs)
-         if (all(peq(:, j) > 0)) cycle
-         x = pair_values(u, pairs(j))
-         where (peq(:, j) > 0) x = 0.0_dp
-         call scatter_free(peq(:, j), -matmul(kstore(:, :, j), x), b)
+         nd = 2*pairs(j)%nn
+         if (all(peq(1:nd, j) > 0)) cycle
+         x = pair_values(u, pairs(j), nd)
+         where (peq(1:nd, j) > 0) x = 0.0_dp
+         call scatter_free(peq(1:nd, j), -matmul(kstore(1:nd, 1:nd, j), x), b)
       end do
    end subroutine subtract_contact_prescribed
 
-   !> Start pressure p_m of eq. (4.1) for every interface: the resultant of the
-   !! first load increment on body A, projected on the mean contact normal,
-   !! over the nominal area of the initially closed pairs; or START PM.
+   !> Start pressure p_m of eq. (4.1) for the rough interfaces: the resultant
+   !! of the first load increment on body A, projected on the mean contact
+   !! normal, over the nominal area of the initially closed pairs; or START PM.
+   !! When body A carries no load (e.g. a foundation under a loaded punch, or a
+   !! half-space under a rigid body driven through its reference node) the
+   !! resultant on the bodies of side B is taken instead: both balance the
+   !! same contact force.
    subroutine start_pressure(m, fcase, dlam1, st, status)
       type(model_t), intent(in) :: m
       real(dp), intent(in) :: fcase(:, :, :), dlam1(:)
       type(contact_state_t), intent(inout) :: st
       type(status_t), intent(inout) :: status
       integer, allocatable :: body(:), nolinks(:, :)
-      logical, allocatable :: in_a(:)
-      real(dp) :: f(2), nbar(2), aa, fn, df(2)
-      integer :: nbody, ip, j, ic
+      logical, allocatable :: in_a(:), in_b(:)
+      real(dp) :: nbar(2), aa, fn
+      integer :: nbody, j, k
       logical :: any_closed
 
       st%p_start = m%contact%opts%p_start
       if (st%p_start > 0.0_dp) return
-      allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin))
+      allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
       call find_bodies(m, nolinks, body, nbody)
       in_a = .false.
+      in_b = .false.
       nbar = 0.0_dp
       aa = 0.0_dp
       any_closed = .false.
       do j = 1, size(m%contact%pairs)
          associate (pr => m%contact%pairs(j))
+            if (m%contact%ifaces(pr%iface)%law /= LAW_ROUGH) cycle
             if (body(pr%node_a) > 0) in_a = in_a .or. body == body(pr%node_a)
+            do k = 2, pr%nn
+               if (body(pr%nodes(k)) > 0) then
+                  in_b = in_b .or. body == body(pr%nodes(k))
+               else
+                  in_b(pr%nodes(k)) = .true.      ! a rigid body's reference node
+               end if
+            end do
             if (.not. st%s(j)%closed) cycle
             any_closed = .true.
             aa = aa + pr%area
@@ -506,23 +612,31 @@ contains
          st%p_start = 0.0_dp
          return
       end if
-      f = 0.0_dp
-      do ip = 1, m%npoin
-         if (.not. in_a(ip)) cycle
-         do ic = 1, size(dlam1)
-            df = dlam1(ic)*fcase(:, ip, ic)
-            f = f + df
-         end do
-      end do
       nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
-      fn = abs(dot_product(f, nbar))
+      fn = abs(dot_product(resultant(in_a), nbar))
+      if (.not. (fn > 0.0_dp)) fn = abs(dot_product(resultant(in_b .and. .not. in_a), nbar))
       if (.not. (fn > 0.0_dp) .or. .not. (aa > 0.0_dp)) then
          call status%set(STAT_INPUT, 'contact: the first increment applies no force normal to the contact '// &
-                         'surface on body A (it is displacement-driven), so the start pressure p_m of eq. (4.1) '// &
+                         'surface on either body (it is displacement-driven), so the start pressure p_m of eq. (4.1) '// &
                          'cannot be computed; give it on a CONTACT START card (PM)')
          return
       end if
       st%p_start = fn/aa
+   contains
+      !> Resultant of the first load increment on the flagged nodes.
+      function resultant(flag) result(f)
+         logical, intent(in) :: flag(:)
+         real(dp) :: f(2), df(2)
+         integer :: ip, ic
+         f = 0.0_dp
+         do ip = 1, m%npoin
+            if (.not. flag(ip)) cycle
+            do ic = 1, size(dlam1)
+               df = dlam1(ic)*fcase(:, ip, ic)
+               f = f + df
+            end do
+         end do
+      end function resultant
    end subroutine start_pressure
 
    !> Contact quantities of one increment into its group `contact`.
