@@ -26,7 +26,8 @@
 !! * Surface B: the pair joins a to surface B averaged over a's tributary zone
 !!   (the mortar weights of a lumped slave side):
 !!       u_b = sum_k w_k u_k,   w_k = int phi_a N_k(xi(s)) dA / int phi_a dA,
-!!   phi_a the hat function of node a on its edges of A, N_k the shape
+!!   phi_a the shape function of node a on its edges of A (int phi_a dA = A_j;
+!!   the hat function where that vanishes, on the axis), N_k the shape
 !!   functions of B at the projection xi(s) of each point s, and g0 the gap
 !!   averaged in the same way.  Collocating the constraint at the node alone
 !!   (w_k = N_k(xi_a)) would make the pressure oscillate from node to node by
@@ -807,6 +808,11 @@ contains
             return
          end if
          call unique_edge_nodes(ie_a, ik_a, nodes_a)
+         ! lumped areas of surface A (all its nodes are paired)
+         paired = .false.
+         paired(nodes_a) = .true.
+         call lumped_areas(m, ie_a, ik_a, paired, area)
+         where (area < 1.0e-13_dp*maxval(area)) area = 0.0_dp
          if (s%law%rigid == 0) then
             call surface_edges(m, s%surf(2), ie_b, ik_b, msg)
             if (len(msg) > 0) then
@@ -904,11 +910,7 @@ contains
             end if
             return
          end if
-         ! areas and sizes from surface A (all its nodes are paired)
-         paired = .false.
-         paired(nodes_a) = .true.
-         call lumped_areas(m, ie_a, ik_a, paired, area)
-         where (area < 1.0e-13_dp*maxval(area)) area = 0.0_dp
+         ! areas (computed above) and sizes from surface A
          call edge_scales(m, ie_a, ik_a, paired, lenv, share)
          do k = np0 + 1, size(pairs)
             pairs(k)%area = area(pairs(k)%node_a)
@@ -954,91 +956,113 @@ contains
          logical, intent(out) :: ok
          integer, parameter :: ng = 5
          real(dp) :: posgp(ng), weigp(ng), sh(3), dv(3), xy(2, 3), xg(2), dw, hat, xi, xb(2), nb(2), off, dist, best
-         real(dp) :: bxi, bxb(2), total, mw(MAX_PAIR_NODES - 1), xyb(2, 3), sg
+         real(dp) :: bxi, bxb(2), total, mw(MAX_PAIR_NODES - 1), xyb(2, 3), sg, area_scale
          real(dp), allocatable :: brk(:)
-         integer :: ke, nd(3), nn, ja, ig, kb, bnd(3), bnn, ndb(3), nnb, r, q, nm, mnodes(MAX_PAIR_NODES - 1), ib
-         logical :: full
+         integer :: ke, nd(3), nn, ja, ig, kb, bnd(3), bnn, ndb(3), nnb, r, q, nm, mnodes(MAX_PAIR_NODES - 1), ib, pass
+         logical :: full, use_hat
+         area_scale = size_model**2
          call gauss_legendre(ng, posgp, weigp)
-         nm = 0
-         total = 0.0_dp
-         gavg = 0.0_dp
-         mw = 0.0_dp
-         mnodes = 0
-         full = .false.
-         do ke = 1, size(ie_a)
-            call edge_nodes(m, ie_a(ke), ik_a(ke), nd, nn)
-            ja = findloc(nd(1:nn), a, 1)
-            if (ja == 0) cycle
-            xy(:, 1:nn) = m%coord(:, nd(1:nn))
-            ! break the edge where nodes of B project on it: the integrand is
-            ! smooth between these points, and 5-point Gauss rules on the
-            ! pieces integrate it exactly on straight edges
-            brk = [-1.0_dp, 1.0_dp]
-            do kb = 1, size(ie_b)
-               call edge_nodes(m, ie_b(kb), ik_b(kb), ndb, nnb)
-               do r = 1, nnb
-                  call project_on_edge(nn, xy(:, 1:nn), m%coord(:, ndb(r)), xi, xb, nb, off)
-                  if (off > 0.0_dp .or. abs(xi) >= 1.0_dp) cycle
-                  if (any(abs(brk - xi) <= 1.0e-12_dp)) cycle
-                  brk = [brk, xi]
-               end do
-            end do
-            call sort_reals(brk)
-            do ib = 1, size(brk) - 1
-               do ig = 1, ng
-                  sg = 0.5_dp*(brk(ib) + brk(ib + 1)) + 0.5_dp*(brk(ib + 1) - brk(ib))*posgp(ig)
-                  call edge_shape(nn, sg, sh(1:nn), dv(1:nn))
-                  xg = matmul(xy(:, 1:nn), sh(1:nn))
-                  dw = hypot(dot_product(dv(1:nn), xy(1, 1:nn)), dot_product(dv(1:nn), xy(2, 1:nn)))*weigp(ig)* &
-                       0.5_dp*(brk(ib + 1) - brk(ib))
-                  if (m%ntype == NTYPE_AXISYMMETRIC) then
-                     dw = dw*two_pi*xg(1)
-                  else
-                     dw = dw*m%mats(m%matno(ie_a(ke)))%thick
-                  end if
-                  select case (ja)       ! hat function of a on this edge (positive also for quadratic edges)
-                  case (1)
-                     hat = 0.5_dp*(1.0_dp - sg)
-                  case (2)
-                     hat = 0.5_dp*(1.0_dp + sg)
-                  case default
-                     hat = 1.0_dp - abs(sg)
-                  end select
-                  best = huge(1.0_dp)
-                  bnn = 0
-                  do kb = 1, size(ie_b)
-                     call edge_nodes(m, ie_b(kb), ik_b(kb), ndb, nnb)
-                     xyb(:, 1:nnb) = m%coord(:, ndb(1:nnb))
-                     call project_on_edge(nnb, xyb(:, 1:nnb), xg, xi, xb, nb, off)
-                     if (off > tol) cycle
-                     dist = norm2(xg - xb)
-                     if (dist < best) then
-                        best = dist
-                        bnn = nnb
-                        bnd = ndb
-                        bxi = xi
-                        bxb = xb
-                     end if
+         do pass = 1, 2
+            use_hat = pass == 2
+            nm = 0
+            total = 0.0_dp
+            gavg = 0.0_dp
+            mw = 0.0_dp
+            mnodes = 0
+            full = .false.
+            do ke = 1, size(ie_a)
+               call edge_nodes(m, ie_a(ke), ik_a(ke), nd, nn)
+               ja = findloc(nd(1:nn), a, 1)
+               if (ja == 0) cycle
+               xy(:, 1:nn) = m%coord(:, nd(1:nn))
+               ! break the edge where nodes of B project on it: the integrand is
+               ! smooth between these points, and 5-point Gauss rules on the
+               ! pieces integrate it exactly on straight edges
+               brk = [-1.0_dp, 1.0_dp]
+               do kb = 1, size(ie_b)
+                  call edge_nodes(m, ie_b(kb), ik_b(kb), ndb, nnb)
+                  do r = 1, nnb
+                     call project_on_edge(nn, xy(:, 1:nn), m%coord(:, ndb(r)), xi, xb, nb, off)
+                     if (off > 0.0_dp .or. abs(xi) >= 1.0_dp) cycle
+                     if (any(abs(brk - xi) <= 1.0e-12_dp)) cycle
+                     brk = [brk, xi]
                   end do
-                  if (bnn == 0) cycle
-                  call edge_shape(bnn, bxi, sh(1:bnn), dv(1:bnn))
-                  do r = 1, bnn
-                     q = findloc(mnodes(1:nm), bnd(r), 1)
-                     if (q == 0) then
-                        if (nm == size(mnodes)) then
-                           full = .true.
-                           cycle
+               end do
+               call sort_reals(brk)
+               do ib = 1, size(brk) - 1
+                  do ig = 1, ng
+                     sg = 0.5_dp*(brk(ib) + brk(ib + 1)) + 0.5_dp*(brk(ib + 1) - brk(ib))*posgp(ig)
+                     call edge_shape(nn, sg, sh(1:nn), dv(1:nn))
+                     xg = matmul(xy(:, 1:nn), sh(1:nn))
+                     dw = hypot(dot_product(dv(1:nn), xy(1, 1:nn)), dot_product(dv(1:nn), xy(2, 1:nn)))*weigp(ig)* &
+                          0.5_dp*(brk(ib + 1) - brk(ib))
+                     if (m%ntype == NTYPE_AXISYMMETRIC) then
+                        dw = dw*two_pi*xg(1)
+                     else
+                        dw = dw*m%mats(m%matno(ie_a(ke)))%thick
+                     end if
+                     ! a's shape function (they sum to 1 and integrate to the lumped
+                     ! areas, so a uniform pressure is transferred exactly); its hat
+                     ! function where that integral vanishes (axis node of a quadratic
+                     ! axisymmetric edge)
+                     if (use_hat) then
+                        select case (ja)
+                        case (1)
+                           hat = 0.5_dp*(1.0_dp - sg)
+                        case (2)
+                           hat = 0.5_dp*(1.0_dp + sg)
+                        case default
+                           hat = 1.0_dp - abs(sg)
+                        end select
+                     else
+                        hat = sh(ja)
+                        ! the mid node of a quadratic edge takes over the shape
+                        ! function of an end node of zero area (on the axis): that
+                        ! node carries no force, and without this its share of
+                        ! the transfer to B would be lost (the patch test fails
+                        ! near the axis)
+                        if (ja == 3) then
+                           if (area(nd(1)) <= 0.0_dp) hat = hat + sh(1)
+                           if (area(nd(2)) <= 0.0_dp) hat = hat + sh(2)
                         end if
-                        nm = nm + 1
-                        mnodes(nm) = bnd(r)
-                        q = nm
                      end if
-                     mw(q) = mw(q) + hat*dw*sh(r)
+                     best = huge(1.0_dp)
+                     bnn = 0
+                     do kb = 1, size(ie_b)
+                        call edge_nodes(m, ie_b(kb), ik_b(kb), ndb, nnb)
+                        xyb(:, 1:nnb) = m%coord(:, ndb(1:nnb))
+                        call project_on_edge(nnb, xyb(:, 1:nnb), xg, xi, xb, nb, off)
+                        if (off > tol) cycle
+                        dist = norm2(xg - xb)
+                        if (dist < best) then
+                           best = dist
+                           bnn = nnb
+                           bnd = ndb
+                           bxi = xi
+                           bxb = xb
+                        end if
+                     end do
+                     if (bnn == 0) cycle
+                     call edge_shape(bnn, bxi, sh(1:bnn), dv(1:bnn))
+                     do r = 1, bnn
+                        q = findloc(mnodes(1:nm), bnd(r), 1)
+                        if (q == 0) then
+                           if (nm == size(mnodes)) then
+                              full = .true.
+                              cycle
+                           end if
+                           nm = nm + 1
+                           mnodes(nm) = bnd(r)
+                           q = nm
+                        end if
+                        mw(q) = mw(q) + hat*dw*sh(r)
+                     end do
+                     total = total + hat*dw
+                     gavg = gavg + hat*dw*dot_product(xg - bxb, nrm)
                   end do
-                  total = total + hat*dw
-                  gavg = gavg + hat*dw*dot_product(xg - bxb, nrm)
                end do
             end do
+            if (total > 1.0e-12_dp*area_scale) exit
          end do
          ok = .not. full .and. total > 0.0_dp .and. nm > 0
          if (full) then
