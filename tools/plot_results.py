@@ -88,6 +88,7 @@ def main(argv=None):
         if "contact" in g:
             c = g["contact"]
             contact = {k: c[k][...] for k in c.keys()}
+            contact["position"] = f["contact/position"][...]     # written once, in /contact
 
     size = max(np.ptp(xy[:, 0]), np.ptp(xy[:, 1]))
     umax = np.abs(u).max()
