@@ -204,6 +204,7 @@ contains
       ! interface has to converge too
       maxrep = max(1, m%contact%opts%max_repeats)
       if (res%contact%has_ideal .and. .not. m%contact%opts%repeats_given) maxrep = 100
+      m%contact%opts%max_repeats = maxrep          ! as used (result file, listing)
       allocate (body(m%npoin))
       call find_bodies(m, reshape([integer ::], [2, 0]), body, nbody)
       ! a rigid body's reference node belongs to no element: a body of its own
