@@ -371,7 +371,7 @@ contains
          length(nd(1:nn)) = min(length(nd(1:nn)), le)
          share(nd(1:nn)) = share(nd(1:nn)) + ae/real(nn, dp)
       end do
-      where (length == huge(1.0_dp)) length = 0.0_dp
+      where (length > 0.5_dp*huge(1.0_dp)) length = 0.0_dp
    end subroutine edge_scales
 
    !> Nearest point of an edge to the point p (small-sliding projection).
@@ -844,6 +844,8 @@ contains
             else
                best = huge(1.0_dp)
                bk = 0
+               bxb = 0.0_dp
+               bn = 0.0_dp
                do kb = 1, size(ie_b)
                   call edge_nodes(m, ie_b(kb), ik_b(kb), nd, nn)
                   xy(:, 1:nn) = m%coord(:, nd(1:nn))

@@ -84,7 +84,7 @@ contains
       integer, intent(in) :: nn
       real(dp), intent(in) :: w(:)
       is_spring = nn == 2
-      if (is_spring) is_spring = w(2) == 1.0_dp
+      if (is_spring) is_spring = abs(w(2) - 1.0_dp) < epsilon(1.0_dp)
    end function is_spring
 
    !> Global (2 nn) x (2 nn) stiffness of an element: K_T bt bt^T + K_n bn bn^T.
