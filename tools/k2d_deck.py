@@ -36,6 +36,29 @@ def f10(x):
     return "%10s" % best
 
 
+def fine_then_graded(a, b, h, s1, q):
+    """Grid lines from a to b: uniform cells of size about h up to a + s1, then
+    cells growing geometrically by about q per cell up to b (the number of
+    growing cells is chosen so that the first one is about h)."""
+    n1 = max(1, int(round(s1 / h)))
+    x1 = a + n1 * h
+    lines = [a + (x1 - a) * k / n1 for k in range(n1 + 1)]
+    if b - x1 <= h * 1e-9:
+        lines[-1] = b
+        return lines
+    # n growing cells of ratio q starting near h: h (q^n - 1)/(q - 1) = b - x1
+    n2 = max(1, int(round(math.log(1.0 + (b - x1) * (q - 1.0) / h) / math.log(q))))
+    # exact end: solve h q^0 + ... with the ratio fixed, scale the cells
+    cells = [q ** k for k in range(n2)]
+    scale = (b - x1) / sum(cells)
+    x = x1
+    for c in cells[:-1]:
+        x += c * scale
+        lines.append(x)
+    lines.append(b)
+    return lines
+
+
 def graded(a, b, n, ratio=1.0):
     """n cells from a to b, last cell / first cell = ratio."""
     if n == 1 or abs(ratio - 1.0) < 1e-12:
@@ -74,6 +97,81 @@ class Deck:
 
     def find(self, body, x, y):
         return self.index.get((body, round(x, 9), round(y, 9)))
+
+    def reference_node(self, x, y, body="RIGID"):
+        """A node of no element: the reference node of a rigid body."""
+        self.nodes.append((x, y, body))
+        self.index[(body + "#%d" % len(self.nodes), round(x, 9), round(y, 9))] = len(self.nodes)
+        return len(self.nodes)
+
+    def renumber(self, links=()):
+        """Reverse Cuthill-McKee renumbering of the nodes (a small skyline profile),
+        over the element graph plus the extra node links (e.g. the contact pairs).
+        Call it after the mesh is built and before nodes are selected for
+        restraints, loads or contact cards."""
+        assert not (self.fixes or self.ties or self.edge_loads or self.point_loads or self.contact)
+        n = len(self.nodes)
+        adj = [set() for _ in range(n + 1)]
+        for mat, c, b in self.elements:
+            for i in c:
+                adj[i].update(c)
+        for i, j in links:
+            adj[i].add(j)
+            adj[j].add(i)
+        for i in range(1, n + 1):
+            adj[i].discard(i)
+        deg = [len(a) for a in adj]
+        seen = [False] * (n + 1)
+        order = []
+
+        def bfs(start):
+            level = [start]
+            seen_l = {start}
+            last = [start]
+            while level:
+                nxt = []
+                for v in level:
+                    for w in adj[v]:
+                        if w not in seen_l:
+                            seen_l.add(w)
+                            nxt.append(w)
+                if nxt:
+                    last = nxt
+                level = nxt
+            return min(last, key=lambda v: deg[v])
+
+        for s0 in sorted(range(1, n + 1), key=lambda v: deg[v]):
+            if seen[s0]:
+                continue
+            start = bfs(bfs(s0))          # a pseudo-peripheral node of this component
+            queue = [start]
+            seen[start] = True
+            k = 0
+            while k < len(queue):
+                v = queue[k]
+                k += 1
+                for w in sorted(adj[v], key=lambda w: deg[w]):
+                    if not seen[w]:
+                        seen[w] = True
+                        queue.append(w)
+            order += queue
+        order.reverse()
+        new = {old: i + 1 for i, old in enumerate(order)}
+        self.nodes = [self.nodes[old - 1] for old in order]
+        self.index = {k: new[v] for k, v in self.index.items()}
+        self.elements = [(mat, [new[i] for i in c], b) for mat, c, b in self.elements]
+        return new
+
+    def profile(self, links=()):
+        """Skyline profile (stored entries, both dofs per node) of the node numbering."""
+        low = list(range(len(self.nodes) + 1))
+        for mat, c, b in self.elements:
+            m = min(c)
+            for i in c:
+                low[i] = min(low[i], m)
+        for i, j in links:
+            low[max(i, j)] = min(low[max(i, j)], min(i, j))
+        return sum(2 * (i - low[i]) + 2 for i in range(1, len(self.nodes) + 1))
 
     def block(self, body, xs, ys, mat, mapping=None):
         """Elements on the grid xs x ys (lists of grid lines); mapping(x, y) -> (x', y')

@@ -22,20 +22,45 @@
 !! s mu F_n with K_T = 0, s the sign of the elastic trial force.  The friction
 !! coefficient of increment i comes from the effective slip after increment
 !! i-1 (explicit, SPEC §2.3).
+!!
+!! Ideal contact (`LAW IDEAL`, the paper's reference [2]: no roughness,
+!! Coulomb friction) on the same pairs: Signorini's conditions
+!!     u_n <= 0,  F_n >= 0,  F_n u_n = 0      (u_n the closure = penetration)
+!! and Coulomb's law per increment, |F_T| <= mu F_n with du_T = 0 (stick) or
+!! F_T = mu F_n sign(du_T) (slip), enforced by an augmented Lagrangian
+!! (Uzawa) method: with multipliers lam_n, lam_T and penalty stiffnesses
+!! eps_n, eps_T a pair carries
+!!     F_n = max(0, lam_n + eps_n u_n),   F_T = proj_[-mu F_n, mu F_n](lam_T + eps_T du_T),
+!! its mode (open / closed-stick / closed-slip) is found by the same repeats as
+!! the rough springs (an active-set iteration on the linear penalised problem),
+!! and once the modes settle and the bodies balance the multipliers are updated,
+!! lam <- F, until the penetration |u_n| of every closed pair and the slip
+!! |du_T| of every sticking pair are below AUGMENTED TOL (1e-6) times the
+!! smallest contact element length.  The penalty only sets the speed of this
+!! iteration, not the answer: eps_n = FACTOR E* A^ / h per pair, the
+!! stiffness of a layer of the bodies' contact modulus E* and thickness h/FACTOR
+!! (FACTOR = 100, h the contact element length, A^ the pair's share of the
+!! element areas), and eps_T = eps_n / FACTOR; the system stays symmetric
+!! positive definite.  Within one Uzawa iterate the slip bound is mu lam_n
+!! (Tresca's law, linear modes); the iteration ends only when it equals
+!! mu F_n to 1e-10, so that converged slipping pairs obey Coulomb's law.
+!! Ref: J. C. Simo, T. A. Laursen, An augmented Lagrangian treatment of contact
+!! problems involving friction, Comput. Struct. 42 (1992) 97-116; P. Wriggers,
+!! Computational Contact Mechanics (2006), ch. 6.
 module contact_algorithm
    use kinds, only: dp
-   use contact_types, only: contact_def_t, interface_t, LAW_ROUGH, FRICTION_NONE, UPDATE_RETURN, &
-                            SLIP_GROSS, NEWCLOSED_TANGENT
+   use contact_types, only: contact_def_t, interface_t, contact_pair_t, LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, &
+                            UPDATE_RETURN, SLIP_GROSS, MAX_PAIR_NODES, NEWCLOSED_TANGENT
    use contact_laws, only: virgin_pressure, virgin_closure, virgin_tangent, unloading_tangent, residual_closure, &
                            normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient, &
                            bilinear_return
-   use contact_element, only: spring_stiffness, spring_kinematics, spring_forces
+   use contact_element, only: pair_stiffness, pair_kinematics, pair_forces
    implicit none
    private
 
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
-             pair_force_vector, law_drift, check_invariants
+             pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
 
    integer, parameter :: NS_OPEN = 0, NS_LOADING = 1, NS_UNLOADING = 2
@@ -72,6 +97,7 @@ module contact_algorithm
       real(dp) :: uthr = 0.0_dp           !! closure at which the pair (re)closes
       real(dp) :: mu = 0.0_dp
       integer :: nswitch = 0
+      real(dp) :: sdir = 0.0_dp           !! ideal law: direction (+-1) of the current slip
    end type pair_mode_t
 
    type :: contact_state_t
@@ -81,30 +107,64 @@ module contact_algorithm
       real(dp), allocatable :: dun(:), dut(:)     !! current increments of closure and slip
       real(dp) :: p_start = 0.0_dp                !! p_m of eq. (4.1)
       logical :: chatter = .false.                !! a pair exhausted its mode changes
+      ! ideal contact (augmented Lagrangian)
+      logical :: has_ideal = .false.              !! some interface is IDEAL
+      logical :: has_rough = .false.              !! some interface is ROUGH
+      real(dp), allocatable :: lam_n(:), lam_t(:) !! multipliers of the current Uzawa iterate
+      real(dp), allocatable :: eps_n(:), eps_t(:) !! penalty stiffnesses [force/length]
+      real(dp) :: tol_pen = 0.0_dp                !! accepted penetration and stick slip [length]
+      real(dp) :: violation = 0.0_dp              !! largest penetration / stick slip at the last check
+      integer :: augmentations = 0                !! multiplier updates in the current increment
    end type contact_state_t
 
 contains
 
    !> Initial states: closure -g0; closed if the gap is within tolerance (or
-   !! among the n_start smallest gaps).
+   !! among the n_start smallest gaps).  Penalty stiffnesses and tolerance of
+   !! the ideal law.
    subroutine contact_init(cdef, gap_tol, st)
       type(contact_def_t), intent(in) :: cdef
       real(dp), intent(in) :: gap_tol
       type(contact_state_t), intent(out) :: st
       integer :: np, j, k, nclose
       integer :: order(size(cdef%pairs))
-      real(dp) :: g(size(cdef%pairs))
+      real(dp) :: g(size(cdef%pairs)), hmin
       np = size(cdef%pairs)
       allocate (st%s(np), st%md(np), st%fn(np), st%ft(np), st%dun(np), st%dut(np))
+      allocate (st%lam_n(np), st%lam_t(np), st%eps_n(np), st%eps_t(np))
       st%fn = 0.0_dp
       st%ft = 0.0_dp
       st%dun = 0.0_dp
       st%dut = 0.0_dp
+      st%lam_n = 0.0_dp
+      st%lam_t = 0.0_dp
+      st%eps_n = 0.0_dp
+      hmin = huge(1.0_dp)
       do j = 1, np
          st%s(j)%un = -cdef%pairs(j)%g0
-         st%s(j)%closed = cdef%pairs(j)%g0 <= gap_tol .and. cdef%pairs(j)%area > 0.0_dp
+         st%s(j)%closed = cdef%pairs(j)%g0 <= gap_tol .and. active(cdef, j)
          st%s(j)%mu = friction_coefficient(cdef%ifaces(cdef%pairs(j)%iface), 0.0_dp)
+         if (is_ideal(cdef, j)) then
+            st%has_ideal = .true.
+            associate (pr => cdef%pairs(j))
+               if (pr%length > 0.0_dp .and. pr%estar > 0.0_dp) then
+                  st%eps_n(j) = cdef%opts%aug_factor*pr%estar*max(pr%share, pr%area)/pr%length
+               end if
+               if (pr%length > 0.0_dp) hmin = min(hmin, pr%length)
+            end associate
+         else
+            st%has_rough = .true.
+         end if
       end do
+      if (st%has_ideal) then
+         ! a pair without scales (made in code) takes the stiffest of the others
+         where (st%eps_n <= 0.0_dp) st%eps_n = max(maxval(st%eps_n), 1.0_dp)
+         st%tol_pen = cdef%opts%aug_tol*hmin
+      end if
+      ! tangentially a softer penalty (a layer of thickness h, not h/FACTOR): the
+      ! trial force of a sticking pair, lam_T + eps_T du_T, must not swing across
+      ! the whole friction cone for a tiny du_T, or the stick/slip modes chatter
+      st%eps_t = st%eps_n/cdef%opts%aug_factor
       if (cdef%opts%n_start > 0) then
          ! the n_start pairs of smallest gap start closed (paper, example 5.2)
          g = cdef%pairs%g0
@@ -121,16 +181,47 @@ contains
          st%s%closed = .false.
          do k = 1, np
             if (nclose >= cdef%opts%n_start) exit
-            if (cdef%pairs(order(k))%area <= 0.0_dp) cycle
+            if (.not. active(cdef, order(k))) cycle
             st%s(order(k))%closed = .true.
             nclose = nclose + 1
          end do
       end if
    end subroutine contact_init
 
+   !> Does pair j obey the ideal law?
+   pure logical function is_ideal(cdef, j)
+      type(contact_def_t), intent(in) :: cdef
+      integer, intent(in) :: j
+      is_ideal = cdef%ifaces(cdef%pairs(j)%iface)%law == LAW_IDEAL
+   end function is_ideal
+
+   !> Can pair j carry force?  A rough spring needs an area; an ideal
+   !! constraint does not (the node on the axis of a quadratic axisymmetric
+   !! edge has zero lumped area but must not penetrate either).
+   pure logical function active(cdef, j)
+      type(contact_def_t), intent(in) :: cdef
+      integer, intent(in) :: j
+      active = cdef%pairs(j)%area > 0.0_dp .or. is_ideal(cdef, j)
+   end function active
+
+   !> The 2 nn dof values (u_a, u_2, ..., u_nn) of a pair from a nodal field
+   !! (2, npoin); zero beyond 2 nn.
+   pure function pair_dofs(v, pr) result(x)
+      real(dp), intent(in) :: v(:, :)
+      type(contact_pair_t), intent(in) :: pr
+      real(dp) :: x(2*MAX_PAIR_NODES)
+      integer :: k
+      x = 0.0_dp
+      do k = 1, pr%nn
+         x(2*k - 1:2*k) = v(:, pr%nodes(k))
+      end do
+   end function pair_dofs
+
    !> Modes and stiffnesses for the next increment from the committed states.
    !! In the first increment closed pairs get the secants of eqs. (4.5), (4.6)
    !! at the start pressure p_m; later the tangents of eqs. (4.10), (4.11).
+   !! Ideal pairs keep their committed modes, get the penalty stiffnesses and
+   !! start the Uzawa iteration from their committed forces.
    pure subroutine begin_increment(cdef, st, first)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(inout) :: st
@@ -138,9 +229,23 @@ contains
       integer :: j
       real(dp) :: p, pfloor
       pfloor = cdef%opts%p_min_ratio*st%p_start
+      st%augmentations = 0
+      st%violation = 0.0_dp
       do j = 1, size(st%s)
          associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             md = pair_mode_t()
+            if (ifc%law == LAW_IDEAL) then
+               md%closed = s%closed
+               md%mu = friction_coefficient(ifc, s%ve)
+               md%tstate = merge(s%tstate, TS_STICK, s%closed)
+               if (md%tstate == TS_SLIP) md%sdir = sign(1.0_dp, s%ft)
+               md%kte = st%eps_t(j)
+               if (md%closed) md%kn = st%eps_n(j)
+               call set_kt(ifc, md)
+               st%lam_n(j) = s%fn
+               st%lam_t(j) = s%ft
+               cycle
+            end if
             md%closed = s%closed
             md%on_unloading = s%on_unloading
             md%ua = s%ua
@@ -230,22 +335,27 @@ contains
       end select
    end subroutine set_kt
 
-   !> Global 4x4 matrix of pair j in its current mode.
+   !> Global (2 nn) x (2 nn) matrix of pair j in its current mode (eq. 3.31),
+   !! in the leading part of ke (the rest is zero).
    pure subroutine pair_matrix(cdef, st, j, ke)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(in) :: st
       integer, intent(in) :: j
-      real(dp), intent(out) :: ke(4, 4)
-      call spring_stiffness(cdef%pairs(j)%t, cdef%pairs(j)%n, st%md(j)%kt, st%md(j)%kn, ke)
+      real(dp), intent(out) :: ke(:, :)       !! (2 MAX_PAIR_NODES, 2 MAX_PAIR_NODES)
+      associate (pr => cdef%pairs(j))
+         call pair_stiffness(pr%t, pr%n, pr%nn, pr%w, st%md(j)%kt, st%md(j)%kn, ke)
+      end associate
    end subroutine pair_matrix
 
-   !> Internal-force vector (r_a, r_b) of pair j for forces fn, ft.
+   !> Internal-force vector (r_a, r_2, ..., r_nn) of pair j for forces fn, ft.
    pure subroutine pair_force_vector(cdef, j, fn, ft, r)
       type(contact_def_t), intent(in) :: cdef
       integer, intent(in) :: j
       real(dp), intent(in) :: fn, ft
-      real(dp), intent(out) :: r(4)
-      call spring_forces(cdef%pairs(j)%t, cdef%pairs(j)%n, fn, ft, r)
+      real(dp), intent(out) :: r(:)           !! (2 MAX_PAIR_NODES)
+      associate (pr => cdef%pairs(j))
+         call pair_forces(pr%t, pr%n, pr%nn, pr%w, fn, ft, r)
+      end associate
    end subroutine pair_force_vector
 
    !> Forces of every pair for the displacement increment du (from the start of
@@ -267,9 +377,13 @@ contains
       changed = .false.
       do j = 1, size(st%s)
          associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
-            call spring_kinematics(pr%t, pr%n, du(:, pr%node_a), du(:, pr%node_b), dun, dut)
+            call pair_kinematics(pr%t, pr%n, pr%nn, pr%w, pair_dofs(du, pr), dun, dut)
             st%dun(j) = dun
             st%dut(j) = dut
+            if (ifc%law == LAW_IDEAL) then
+               call evaluate_ideal(cdef, st, j, changed(j))
+               cycle
+            end if
             u = s%un + dun
             may_switch = md%nswitch < MAX_SWITCH
             fn = 0.0_dp
@@ -426,6 +540,101 @@ contains
       end do
    end subroutine evaluate_pairs
 
+   !> Forces and modes of an ideal pair for its current multipliers:
+   !! F_n = max(0, lam_n + eps_n u_n), F_T = proj(lam_T + eps_T du_T) onto
+   !! [-g, g] with the slip bound g = mu lam_n of the same multipliers: within
+   !! one Uzawa iterate the pair obeys Tresca's law (a fixed bound), so every
+   !! mode is linear and the system symmetric; the multiplier update then
+   !! moves the bound to mu F_n (Coulomb at convergence).
+   pure subroutine evaluate_ideal(cdef, st, jp, chg)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      integer, intent(in) :: jp
+      logical, intent(inout) :: chg
+      real(dp) :: trial_n, trial_t, lim
+      integer :: ts
+      logical :: now_closed
+      associate (s => st%s(jp), md => st%md(jp), ifc => cdef%ifaces(cdef%pairs(jp)%iface))
+         trial_n = st%lam_n(jp) + st%eps_n(jp)*(s%un + st%dun(jp))
+         now_closed = trial_n > 0.0_dp
+         if (now_closed .neqv. md%closed) then
+            md%closed = now_closed
+            md%newly_closed = now_closed .and. .not. s%closed
+            md%tstate = TS_STICK
+            chg = .true.
+            md%nswitch = md%nswitch + 1
+         end if
+         st%fn(jp) = max(trial_n, 0.0_dp)
+         st%ft(jp) = 0.0_dp
+         if (md%closed .and. ifc%friction /= FRICTION_NONE) then
+            lim = md%mu*max(st%lam_n(jp), 0.0_dp)
+            trial_t = st%lam_t(jp) + st%eps_t(jp)*st%dut(jp)
+            if (abs(trial_t) <= lim .or. (md%tstate == TS_SLIP .and. trial_t*md%sdir < 0.0_dp)) then
+               ! stick; also a slipping pair whose trial force has turned
+               ! against its slip: it sticks first and its stick stiffness
+               ! settles the new state (a jump from +g to -g at once, across
+               ! the whole cone, makes the active set cycle when the load
+               ! reverses after full slip)
+               ts = TS_STICK
+               st%ft(jp) = trial_t
+            else
+               ts = TS_SLIP
+               st%ft(jp) = sign(lim, trial_t)
+               md%sdir = sign(1.0_dp, trial_t)
+            end if
+            if (ts /= md%tstate) then
+               md%tstate = ts
+               chg = .true.
+               md%nswitch = md%nswitch + 1
+            end if
+         end if
+         md%kn = merge(st%eps_n(jp), 0.0_dp, md%closed)
+         md%kte = st%eps_t(jp)
+         call set_kt(ifc, md)
+      end associate
+   end subroutine evaluate_ideal
+
+   !> Uzawa step of the ideal pairs, called when the modes have settled and the
+   !! bodies balance the current forces.  The increment is converged when every
+   !! closed ideal pair penetrates by at most tol_pen (|u_n|: penetration, or a
+   !! gap under load, the complementarity defect), every sticking one slipped
+   !! by at most tol_pen in the increment, and every slipping one carries
+   !! |F_T| = mu F_n to 1e-10 of the largest normal force (its Tresca bound
+   !! mu lam_n has caught up with mu F_n).  Otherwise the multipliers take the
+   !! current forces (lam <- F) and `done` is false.
+   pure subroutine augment_multipliers(cdef, st, done)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      logical, intent(out) :: done
+      integer :: j
+      real(dp) :: viol, fmax, coulomb
+      viol = 0.0_dp
+      coulomb = 0.0_dp
+      fmax = 0.0_dp
+      do j = 1, size(st%s)
+         if (is_ideal(cdef, j)) fmax = max(fmax, st%fn(j))
+      end do
+      do j = 1, size(st%s)
+         if (.not. is_ideal(cdef, j)) cycle
+         associate (s => st%s(j), md => st%md(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            if (.not. md%closed) cycle
+            viol = max(viol, abs(s%un + st%dun(j)))
+            if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_STICK) viol = max(viol, abs(st%dut(j)))
+            if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_SLIP) &
+               coulomb = max(coulomb, abs(abs(st%ft(j)) - md%mu*st%fn(j)))
+         end associate
+      end do
+      st%violation = viol
+      done = viol <= st%tol_pen .and. coulomb <= 1.0e-10_dp*fmax
+      if (done) return
+      st%augmentations = st%augmentations + 1
+      do j = 1, size(st%s)
+         if (.not. is_ideal(cdef, j)) cycle
+         st%lam_n(j) = st%fn(j)
+         st%lam_t(j) = st%ft(j)
+      end do
+   end subroutine augment_multipliers
+
    !> Record a mode change of one pair.
    pure subroutine flag(changed, nswitch, chatter)
       logical, intent(inout) :: changed, chatter
@@ -449,6 +658,21 @@ contains
             s%mu = md%mu
             s%kn = md%kn
             s%kt = md%kt
+            if (ifc%law == LAW_IDEAL) then
+               ! no elastic layer: all tangential motion of a slipping pair is
+               ! irreversible; a sticking one moved by at most tol_pen
+               s%closed = md%closed
+               s%fn = merge(st%fn(j), 0.0_dp, md%closed)
+               s%ft = merge(st%ft(j), 0.0_dp, md%closed)
+               s%tstate = merge(md%tstate, TS_STICK, md%closed)
+               if (md%closed .and. md%tstate == TS_SLIP .and. ifc%friction /= FRICTION_NONE) then
+                  s%utp = s%utp + st%dut(j)
+                  s%utp_gross = s%utp_gross + st%dut(j)
+                  s%ve = s%ve + abs(st%dut(j))
+                  s%fy = max(s%fy, abs(s%ft))
+               end if
+               cycle
+            end if
             if (md%closed) then
                s%closed = .true.
                s%fn = st%fn(j)

@@ -35,11 +35,12 @@ module incremental
                        subtract_prescribed, restrained_forces, element_error
    use solid2d, only: element_stresses, element_stiffness
    use quadrature, only: max_gp
-   use contact_types, only: UPDATE_RETURN, contact_pair_t
+   use contact_types, only: UPDATE_RETURN, contact_pair_t, MAX_PAIR_NODES, LAW_ROUGH, PAIR_RIGID
    use contact_algorithm, only: contact_state_t, contact_init, begin_increment, pair_matrix, &
                                 evaluate_pairs, commit_increment, pair_force_vector, law_drift, check_invariants, &
+                                augment_multipliers, pair_dofs, &
                                 NS_OPEN, NS_LOADING, NS_UNLOADING, TS_SLIP
-   use contact_element, only: spring_stiffness
+   use contact_element, only: pair_stiffness
    use condensation, only: condensed_t
    use restraint_check, only: find_bodies
    use results_hdf5, only: results_file_t, K2D_VERSION
@@ -73,6 +74,8 @@ module incremental
       real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
       real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
       integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
+      real(dp), allocatable :: penetration(:)    !! ideal contact: largest |u_n| (closed) or stick slip at the end
+      integer, allocatable :: augmentations(:)   !! ideal contact: multiplier updates per increment
       character(len=:), allocatable :: results_path
       logical :: reported = .false.              !! a failure was already printed
       integer :: warnings = 0                    !! warnings printed about the method (closure, chatter)
@@ -87,9 +90,11 @@ module incremental
       real(dp), allocatable :: ucase(:, :, :)      !! (2, npoin, ncase) prescribed displacements at factor 1
       logical, allocatable :: restrained(:, :)     !! (2, npoin)
       integer :: npair = 0
-      integer, allocatable :: peq(:, :)            !! (4, npair) equations of the pairs' dofs
-      real(dp), allocatable :: kstore(:, :, :)     !! (4, 4, npair) spring matrices of the current system
-      real(dp), allocatable :: kref(:, :, :)       !! (4, 4, npair) reference springs of the condensation
+      integer :: nd = 4                            !! dofs of the largest pair (2 MAX_PAIR_NODES)
+      integer, allocatable :: peq(:, :)            !! (nd, npair) equations of the pairs' dofs, 0 beyond 2 nn
+      real(dp), allocatable :: kstore(:, :, :)     !! (nd, nd, npair) spring matrices of the current system
+      real(dp), allocatable :: kref(:, :, :)       !! (nd, nd, npair) reference springs of the condensation
+      integer :: maxrep = 30                       !! cap on solutions of one increment
       logical :: has_contact = .false.
       logical :: returning = .false.               !! RETURN update (Newton)
       logical :: modified = .false.                !! modified Newton: stiffness kept within an increment
@@ -126,7 +131,7 @@ contains
       type(numbering_report_t) :: numbering
       real(dp), allocatable :: fext(:, :), fext_new(:, :), carry(:), dlam(:), ve_old(:)
       integer, allocatable :: body(:)
-      integer :: inc, lu, ios, nbody, nstep, cuts, ic
+      integer :: inc, lu, ios, nbody, nstep, cuts, ic, j
       integer(i8) :: t0, rate
       character(len=256) :: iomsg
       character(len=:), allocatable :: solver_name, lis_path, lis_level
@@ -155,7 +160,7 @@ contains
       allocate (res%disp(2, m%npoin), res%react(2, m%npoin), fext(2, m%npoin), fext_new(2, m%npoin), &
                 carry(an%map%neq), dlam(m%ncase), ve_old(an%npair))
       allocate (res%iterations(0), res%repeats(0), res%residual(0), res%drift(0), res%imbalance(0), &
-                res%violations(0))
+                res%violations(0), res%penetration(0), res%augmentations(0))
       res%disp = 0.0_dp
       res%react = 0.0_dp
       fext = 0.0_dp
@@ -166,11 +171,26 @@ contains
       gap_tol = m%contact%opts%gap_tol
       if (gap_tol < 0.0_dp) gap_tol = 1.0e-9_dp*model_size(m)
       call contact_init(m%contact, gap_tol, res%contact)
+      ! the cap on solutions per increment: CONTACT REPEATS, or 30 for the rough
+      ! springs and 100 when the augmented Lagrangian of an ideal interface has
+      ! to converge too
+      an%maxrep = max(1, m%contact%opts%max_repeats)
+      if (res%contact%has_ideal .and. .not. m%contact%opts%repeats_given) an%maxrep = 100
+      m%contact%opts%max_repeats = an%maxrep          ! as used (result file, listing)
       allocate (body(m%npoin))
       call find_bodies(m, reshape([integer ::], [2, 0]), body, nbody)
-      if (an%has_contact) then
+      ! a rigid body's reference node belongs to no element: a body of its own
+      do j = 1, an%npair
+         if (m%contact%pairs(j)%kind /= PAIR_RIGID) cycle
+         if (body(m%contact%pairs(j)%node_b) > 0) cycle
+         nbody = nbody + 1
+         body(m%contact%pairs(j)%node_b) = nbody
+      end do
+      if (an%has_contact .and. res%contact%has_rough) then
          call start_pressure(m, an%fcase, m%lambda(:, 1) - m%lambda(:, 0), res%contact, status)
          if (.not. status%ok()) return
+      end if
+      if (an%has_contact) then
          if (an%condensed) call set_up_condensation(m, an, status)
          if (.not. status%ok()) return
       end if
@@ -243,7 +263,7 @@ contains
             do ic = 1, m%ncase
                fext_new = fext_new + dlam(ic)*an%fcase(:, :, ic)
             end do
-            if (first .and. an%has_contact .and. m%contact%opts%p_start <= 0.0_dp) then
+            if (first .and. an%has_contact .and. res%contact%has_rough .and. m%contact%opts%p_start <= 0.0_dp) then
                call start_pressure(m, an%fcase, dlam, res%contact, status)
                if (.not. status%ok()) exit deck
             end if
@@ -324,7 +344,7 @@ contains
       type(numbering_report_t), intent(out) :: numbering
       type(status_t), intent(inout) :: status
       integer, allocatable :: xadj(:), adjncy(:), links(:, :)
-      integer :: j, k
+      integer :: j, k, ip, nlink
 
       an%has_contact = m%contact%active
       an%npair = size(m%contact%pairs)
@@ -333,9 +353,22 @@ contains
 
       ! equations (ties share equations; RCM order for the skyline solver), pattern
       ! with every contact pair, K_AB
-      allocate (links(2, an%npair))
+      ! all nodes of a pair couple: node a with its master side (node b, the nodes
+      ! of B under its tributary zone, or a rigid body's reference node), and
+      ! those master nodes with each other
+      nlink = 0
       do j = 1, an%npair
-         links(:, j) = [m%contact%pairs(j)%node_a, m%contact%pairs(j)%node_b]
+         nlink = nlink + (m%contact%pairs(j)%nn*(m%contact%pairs(j)%nn - 1))/2
+      end do
+      allocate (links(2, nlink))
+      nlink = 0
+      do j = 1, an%npair
+         do k = 2, m%contact%pairs(j)%nn
+            do ip = 1, k - 1
+               nlink = nlink + 1
+               links(:, nlink) = [m%contact%pairs(j)%nodes(ip), m%contact%pairs(j)%nodes(k)]
+            end do
+         end do
       end do
       call number_equations(m, solver_name, links, an%map, xadj, adjncy, numbering, status, ties=m%ties)
       if (.not. status%ok()) return
@@ -354,10 +387,14 @@ contains
       if (.not. status%ok()) return
       allocate (an%restrained(2, m%npoin))
       an%restrained = an%map%id < 0
-      allocate (an%peq(4, an%npair), an%kstore(4, 4, an%npair))
+      an%nd = 2*MAX_PAIR_NODES
+      allocate (an%peq(an%nd, an%npair), an%kstore(an%nd, an%nd, an%npair))
       an%kstore = 0.0_dp
+      an%peq = 0
       do j = 1, an%npair
-         an%peq(:, j) = [an%map%id(:, m%contact%pairs(j)%node_a), an%map%id(:, m%contact%pairs(j)%node_b)]
+         do k = 1, m%contact%pairs(j)%nn
+            an%peq(2*k - 1:2*k, j) = an%map%id(:, m%contact%pairs(j)%nodes(k))
+         end do
       end do
       allocate (an%spacing(an%npair))
       an%spacing = huge(1.0_dp)
@@ -395,7 +432,7 @@ contains
       allocate (mark(an%map%neq))
       mark = .false.
       do j = 1, an%npair
-         do k = 1, 4
+         do k = 1, an%nd
             if (an%peq(k, j) > 0) mark(an%peq(k, j)) = .true.
          end do
       end do
@@ -419,21 +456,27 @@ contains
       allocate (diag(an%map%neq))
       call an%solver%restore_base()
       call body_diagonal(m, an, diag)
-      allocate (an%kref(4, 4, an%npair))
+      allocate (an%kref(an%nd, an%nd, an%npair))
+      an%kref = 0.0_dp
       do j = 1, an%npair
          ! the smallest diagonal of the pair's free equations: a tied or very stiff
          ! side would otherwise give a reference spring far stiffer than any
          ! contact spring, and K_c - K_ref would lose digits to cancellation
          kref = huge(1.0_dp)
          n = 0
-         do k = 1, 4
+         ! (a rigid body's reference node has no elements: zero diagonal, skipped;
+         ! its reference springs then come from the deformable side alone)
+         do k = 1, an%nd
             if (an%peq(k, j) <= 0) cycle
+            if (diag(an%peq(k, j)) <= 0.0_dp) cycle
             kref = min(kref, diag(an%peq(k, j)))
             n = n + 1
          end do
          if (n == 0) kref = 1.0_dp
          kref = 0.1_dp*kref
-         call spring_matrix_iso(m%contact%pairs(j)%t, m%contact%pairs(j)%n, kref, an%kref(:, :, j))
+         associate (pr => m%contact%pairs(j))
+            call pair_stiffness(pr%t, pr%n, pr%nn, pr%w, kref, kref, an%kref(:, :, j))
+         end associate
          call an%solver%add_element(an%peq(:, j), an%kref(:, :, j))
       end do
       call an%solver%factorize(status)
@@ -467,13 +510,6 @@ contains
       end do
    end subroutine body_diagonal
 
-   !> A spring of stiffness k in both the normal and the tangential direction.
-   pure subroutine spring_matrix_iso(t, n, k, ke)
-      real(dp), intent(in) :: t(2), n(2), k
-      real(dp), intent(out) :: ke(4, 4)
-      call spring_stiffness(t, n, k, k, ke)
-   end subroutine spring_matrix_iso
-
    !> One attempt at an increment of the load factors dlam from the committed
    !! state: solve, check the springs, repeat until they keep their modes and
    !! balance (or the cap).  Nothing is committed here.
@@ -487,11 +523,13 @@ contains
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: rhs(:), ddu(:, :), rvec(:, :), rpred(:, :), w1(:), wc(:), dvc(:), zc(:), rsum(:)
       logical, allocatable :: changed(:)
-      integer :: ip, idof, ic, j, iter, maxit
+      integer :: ip, idof, ic, j, iter, maxit, k
       real(dp) :: fscale, dnorm
-      logical :: need_matrix
+      logical :: need_matrix, done
 
-      allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(4, an%npair), rpred(4, an%npair), changed(an%npair))
+      allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%nd, an%npair), rpred(an%nd, an%npair), changed(an%npair))
+      rvec = 0.0_dp
+      rpred = 0.0_dp
       if (.not. allocated(att%du)) allocate (att%du(2, m%npoin), att%carry(an%map%neq))
       att%du = 0.0_dp
       att%solutions = 0
@@ -529,13 +567,19 @@ contains
       ddu = att%du       ! first solve: prescribed increments at the restrained dofs
       need_matrix = an%has_contact .or. .not. an%system_current
       maxit = 1
-      if (an%has_contact) maxit = max(1, m%contact%opts%max_repeats)
+      if (an%has_contact) maxit = an%maxrep
       do iter = 1, maxit
          if (need_matrix) then
             call set_system(an, m, st, status)
             if (.not. status%ok()) return
          end if
-         if (iter == 1) call subtract_contact_prescribed(an%peq, an%kstore, m%contact%pairs, ddu, rhs)
+         if (iter == 1) then
+            call subtract_contact_prescribed(an%peq, an%kstore, m%contact%pairs, ddu, rhs)
+            ! an increment driven only through springs of prescribed nodes (a rigid
+            ! body's reference node belongs to no element) has no other force to
+            ! measure its out-of-balance force against
+            if (fscale <= 1.0e-300_dp .and. an%map%neq > 0) fscale = max(maxval(abs(rhs)), 1.0e-300_dp)
+         end if
          if (an%condensed) then
             ! (B + dK) dv = b with dK = K_c - K_ref on the contact equations only
             if (iter == 1) then
@@ -555,9 +599,9 @@ contains
             zc = zc + matmul(an%cond%kcc, dvc)
             ! the contact part of the solution at the pairs' nodes (only these are needed now)
             do j = 1, an%npair
-               do idof = 1, 4
+               do idof = 1, 2*m%contact%pairs(j)%nn
                   if (an%peq(idof, j) <= 0) cycle
-                  ip = merge(m%contact%pairs(j)%node_a, m%contact%pairs(j)%node_b, idof <= 2)
+                  ip = m%contact%pairs(j)%nodes((idof + 1)/2)
                   ddu(mod(idof - 1, 2) + 1, ip) = dvc(an%cond%pos(an%peq(idof, j)))
                end do
             end do
@@ -579,19 +623,12 @@ contains
          end if
          ! predicted spring forces (the linearisation the solve used) ...
          do j = 1, an%npair
-            rpred(:, j) = rvec(:, j) + matmul(an%kstore(:, :, j), pair_values(ddu, m%contact%pairs(j)))
+            k = 2*m%contact%pairs(j)%nn
+            rpred(1:k, j) = rvec(1:k, j) + matmul(an%kstore(1:k, 1:k, j), pair_values(ddu, m%contact%pairs(j), k))
          end do
          ! ... against the actual ones, after the mode checks
          call evaluate_pairs(m%contact, st, att%du, changed, first)
-         do j = 1, an%npair
-            call pair_force_vector(m%contact, j, st%fn(j), st%ft(j), rvec(:, j))
-         end do
-         rhs = 0.0_dp
-         do j = 1, an%npair
-            call scatter_free(an%peq(:, j), rpred(:, j) - rvec(:, j), rhs)
-         end do
-         att%rnorm = 0.0_dp
-         if (an%map%neq > 0) att%rnorm = maxval(abs(rhs))/fscale
+         call residual_forces()
          dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/max(maxval(abs(att%du)), tiny(1.0_dp))
          ddu = 0.0_dp
          att%changing = any(changed)
@@ -602,8 +639,27 @@ contains
          end if
          if (att%rnorm <= m%contact%opts%tol_residual .and. &
              (.not. an%returning .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
-            att%converged = .true.
-            exit
+            if (.not. st%has_ideal) then
+               att%converged = .true.
+               exit
+            end if
+            ! ideal contact: the modes hold and the bodies balance the forces of the
+            ! current multipliers; converged when the penetrations are within
+            ! tolerance, else an Uzawa update and the forces of the new multipliers
+            ! drive the next solution
+            call augment_multipliers(m%contact, st, done)
+            if (done) then
+               att%converged = .true.
+               exit
+            end if
+            call evaluate_pairs(m%contact, st, att%du, changed, first)
+            call residual_forces()
+            att%changing = any(changed)
+            if (att%changing) then
+               att%repeats = att%repeats + 1
+               need_matrix = .true.
+               cycle
+            end if
          end if
          need_matrix = an%returning .and. .not. an%modified
       end do
@@ -622,6 +678,22 @@ contains
             end do
          end do
       end if
+   contains
+      !> Internal-force vectors of the pairs for their current forces, and the
+      !! out-of-balance force: the forces the solve predicted minus these.
+      subroutine residual_forces()
+         integer :: jp, nv
+         do jp = 1, an%npair
+            call pair_force_vector(m%contact, jp, st%fn(jp), st%ft(jp), rvec(:, jp))
+         end do
+         rhs = 0.0_dp
+         do jp = 1, an%npair
+            nv = 2*m%contact%pairs(jp)%nn
+            call scatter_free(an%peq(1:nv, jp), rpred(1:nv, jp) - rvec(1:nv, jp), rhs)
+         end do
+         att%rnorm = 0.0_dp
+         if (an%map%neq > 0) att%rnorm = maxval(abs(rhs))/fscale
+      end subroutine residual_forces
    end subroutine attempt_increment
 
    !> Put the springs of the current modes into the system: refactorize
@@ -690,7 +762,13 @@ contains
          call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                          itoa(att%solutions)//' solutions (contact states keep changing); '// &
                          'reduce the increment size, raise CONTACT REPEATS or use OPTIONS AUTOINC')
-      else if (an%returning) then
+      else if (st%has_ideal .and. att%rnorm <= 1.0e-8_dp) then
+         call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
+                         itoa(att%solutions)//' solutions: ideal contact still penetrates or slips by '// &
+                         rtoa(st%violation)//' > the tolerance '//rtoa(st%tol_pen)//' after '// &
+                         itoa(st%augmentations)//' multiplier updates; raise CONTACT REPEATS or the AUGMENTED '// &
+                         'factor, or use OPTIONS AUTOINC')
+      else if (an%returning .or. st%has_ideal) then
          call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                          itoa(att%solutions)//' solutions (relative out-of-balance force '// &
                          rtoa(att%rnorm)//'); reduce the increment size, raise CONTACT REPEATS or use '// &
@@ -741,6 +819,8 @@ contains
       type(model_t), intent(in) :: m
       type(contact_state_t), intent(in) :: st
       res%iterations = [res%iterations, att%solutions]
+      res%penetration = [res%penetration, st%violation]
+      res%augmentations = [res%augmentations, st%augmentations]
       res%repeats = [res%repeats, att%repeats]
       res%residual = [res%residual, merge(att%rnorm, 0.0_dp, has_contact)]
       if (has_contact) then
@@ -770,8 +850,8 @@ contains
       integer(i8), intent(in) :: t0, rate
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: fr(:, :), fsp(:, :)
-      real(dp) :: r(4), imb
-      integer :: j, nbad, err
+      real(dp) :: r(2*MAX_PAIR_NODES), imb
+      integer :: j, k, nbad, err
       integer(i8) :: t1
       integer(hid_t) :: gid
       character(len=:), allocatable :: imsg
@@ -783,8 +863,9 @@ contains
       fsp = 0.0_dp
       do j = 1, an%npair
          call pair_force_vector(m%contact, j, res%contact%s(j)%fn, res%contact%s(j)%ft, r)
-         fsp(:, m%contact%pairs(j)%node_a) = fsp(:, m%contact%pairs(j)%node_a) + r(1:2)
-         fsp(:, m%contact%pairs(j)%node_b) = fsp(:, m%contact%pairs(j)%node_b) + r(3:4)
+         do k = 1, m%contact%pairs(j)%nn
+            fsp(:, m%contact%pairs(j)%nodes(k)) = fsp(:, m%contact%pairs(j)%nodes(k)) + r(2*k - 1:2*k)
+         end do
       end do
       res%react = 0.0_dp
       where (an%restrained) res%react = fr + fsp - fext
@@ -814,6 +895,8 @@ contains
       call rf%write_real2(gid, 'reaction', res%react, err)
       if (an%has_contact) call rf%attr_real0(gid, 'residual', res%residual(nstep), err)
       if (an%has_contact) call rf%attr_real0(gid, 'law_drift', res%drift(nstep), err)
+      if (res%contact%has_ideal) call rf%attr_real0(gid, 'penetration', res%penetration(nstep), err)
+      if (res%contact%has_ideal) call rf%attr_int(gid, 'augmentations', res%augmentations(nstep), err)
       call rf%attr_real0(gid, 'imbalance', imb, err)
       call rf%attr_int(gid, 'invariant_violations', nbad, err)
       call rf%attr_int(gid, 'deck_increment', inc, err)
@@ -896,6 +979,7 @@ contains
       if (.not. allocated(m%ties)) allocate (m%ties(3, 0))
       if (.not. allocated(m%contact%pairs)) allocate (m%contact%pairs(0))
       if (.not. allocated(m%contact%ifaces)) allocate (m%contact%ifaces(0))
+      if (.not. allocated(m%contact%rigids)) allocate (m%contact%rigids(0))
       m%contact%active = size(m%contact%pairs) > 0
    end subroutine complete_model
 
@@ -904,21 +988,23 @@ contains
       model_size = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), maxval(m%coord(2, :)) - minval(m%coord(2, :)))
    end function model_size
 
-   !> The four dof values (a_x, a_y, b_x, b_y) of a pair from a nodal field.
-   pure function pair_values(v, pr) result(x)
+   !> The nd = 2 nn dof values (a_x, a_y, b_x, b_y, ...) of a pair from a nodal field.
+   pure function pair_values(v, pr, nd) result(x)
       real(dp), intent(in) :: v(:, :)
       type(contact_pair_t), intent(in) :: pr
-      real(dp) :: x(4)
-      x = [v(:, pr%node_a), v(:, pr%node_b)]
+      integer, intent(in) :: nd
+      real(dp) :: x(nd), y(2*MAX_PAIR_NODES)
+      y = pair_dofs(v, pr)
+      x = y(1:nd)
    end function pair_values
 
-   !> Add a pair's vector to the free equations.
+   !> Add a pair's vector to the free equations (entries with ieq <= 0 are skipped).
    pure subroutine scatter_free(ieq, v, b)
-      integer, intent(in) :: ieq(4)
-      real(dp), intent(in) :: v(4)
+      integer, intent(in) :: ieq(:)
+      real(dp), intent(in) :: v(:)
       real(dp), intent(inout) :: b(:)
       integer :: k
-      do k = 1, 4
+      do k = 1, size(ieq)
          if (ieq(k) > 0) b(ieq(k)) = b(ieq(k)) + v(k)
       end do
    end subroutine scatter_free
@@ -930,41 +1016,55 @@ contains
       type(contact_pair_t), intent(in) :: pairs(:)
       real(dp), intent(in) :: u(:, :)
       real(dp), intent(inout) :: b(:)
-      real(dp) :: x(4)
-      integer :: j
+      real(dp), allocatable :: x(:)
+      integer :: j, nd
       do j = 1, size(pairs)
-         if (all(peq(:, j) > 0)) cycle
-         x = pair_values(u, pairs(j))
-         where (peq(:, j) > 0) x = 0.0_dp
-         call scatter_free(peq(:, j), -matmul(kstore(:, :, j), x), b)
+         nd = 2*pairs(j)%nn
+         if (all(peq(1:nd, j) > 0)) cycle
+         x = pair_values(u, pairs(j), nd)
+         where (peq(1:nd, j) > 0) x = 0.0_dp
+         call scatter_free(peq(1:nd, j), -matmul(kstore(1:nd, 1:nd, j), x), b)
       end do
    end subroutine subtract_contact_prescribed
 
-   !> Start pressure p_m of eq. (4.1) for every interface: the resultant of the
-   !! first load increment on body A, projected on the mean contact normal,
-   !! over the nominal area of the initially closed pairs; or START PM.
+   !> Start pressure p_m of eq. (4.1) for the rough interfaces: the resultant
+   !! of the first load increment on body A, projected on the mean contact
+   !! normal, over the nominal area of the initially closed pairs; or START PM.
+   !! When body A carries no load (e.g. a foundation under a loaded punch, or a
+   !! half-space under a rigid body driven through its reference node) the
+   !! resultant on the bodies of side B is taken instead: both balance the
+   !! same contact force.
    subroutine start_pressure(m, fcase, dlam1, st, status)
       type(model_t), intent(in) :: m
       real(dp), intent(in) :: fcase(:, :, :), dlam1(:)
       type(contact_state_t), intent(inout) :: st
       type(status_t), intent(inout) :: status
       integer, allocatable :: body(:), nolinks(:, :)
-      logical, allocatable :: in_a(:)
-      real(dp) :: f(2), nbar(2), aa, fn, df(2)
-      integer :: nbody, ip, j, ic
+      logical, allocatable :: in_a(:), in_b(:)
+      real(dp) :: nbar(2), aa, fn
+      integer :: nbody, j, k
       logical :: any_closed
 
       st%p_start = m%contact%opts%p_start
       if (st%p_start > 0.0_dp) return
-      allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin))
+      allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
       call find_bodies(m, nolinks, body, nbody)
       in_a = .false.
+      in_b = .false.
       nbar = 0.0_dp
       aa = 0.0_dp
       any_closed = .false.
       do j = 1, size(m%contact%pairs)
          associate (pr => m%contact%pairs(j))
+            if (m%contact%ifaces(pr%iface)%law /= LAW_ROUGH) cycle
             if (body(pr%node_a) > 0) in_a = in_a .or. body == body(pr%node_a)
+            do k = 2, pr%nn
+               if (body(pr%nodes(k)) > 0) then
+                  in_b = in_b .or. body == body(pr%nodes(k))
+               else
+                  in_b(pr%nodes(k)) = .true.      ! a rigid body's reference node
+               end if
+            end do
             if (.not. st%s(j)%closed) cycle
             any_closed = .true.
             aa = aa + pr%area
@@ -975,23 +1075,31 @@ contains
          st%p_start = 0.0_dp
          return
       end if
-      f = 0.0_dp
-      do ip = 1, m%npoin
-         if (.not. in_a(ip)) cycle
-         do ic = 1, size(dlam1)
-            df = dlam1(ic)*fcase(:, ip, ic)
-            f = f + df
-         end do
-      end do
       nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
-      fn = abs(dot_product(f, nbar))
+      fn = abs(dot_product(resultant(in_a), nbar))
+      if (.not. (fn > 0.0_dp)) fn = abs(dot_product(resultant(in_b .and. .not. in_a), nbar))
       if (.not. (fn > 0.0_dp) .or. .not. (aa > 0.0_dp)) then
          call status%set(STAT_INPUT, 'contact: the first increment applies no force normal to the contact '// &
-                         'surface on body A (it is displacement-driven), so the start pressure p_m of eq. (4.1) '// &
+                         'surface on either body (it is displacement-driven), so the start pressure p_m of eq. (4.1) '// &
                          'cannot be computed; give it on a CONTACT START card (PM)')
          return
       end if
       st%p_start = fn/aa
+   contains
+      !> Resultant of the first load increment on the flagged nodes.
+      function resultant(flag) result(f)
+         logical, intent(in) :: flag(:)
+         real(dp) :: f(2), df(2)
+         integer :: ip, ic
+         f = 0.0_dp
+         do ip = 1, m%npoin
+            if (.not. flag(ip)) cycle
+            do ic = 1, size(dlam1)
+               df = dlam1(ic)*fcase(:, ip, ic)
+               f = f + df
+            end do
+         end do
+      end function resultant
    end subroutine start_pressure
 
    !> Contact quantities of one increment into its group `contact`.

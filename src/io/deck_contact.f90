@@ -14,7 +14,8 @@ module deck_contact
    use contact_types, only: LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, &
                             FRICTION_COULOMB, FRICTION_FREDRIKSSON, UNITS_KGF_UM, UNITS_N_UM, &
                             UNITS_MODEL, UPDATE_EXPLICIT, UPDATE_RETURN, SLIP_IRREVERSIBLE, SLIP_GROSS, &
-                            NEWCLOSED_SECANT, NEWCLOSED_TANGENT
+                            NEWCLOSED_SECANT, NEWCLOSED_TANGENT, &
+                            MATCH_NODE, MATCH_SEGMENT, rigid_body_t, RIGID_POLYLINE, RIGID_CIRCLE
    use contact_definition, only: iface_spec_t, define_contact
    implicit none
    private
@@ -132,6 +133,7 @@ contains
          end function is_block_card
       end interface
       type(iface_spec_t), allocatable :: spec(:)
+      type(rigid_body_t), allocatable :: rigids(:)
       integer :: ic, nif, mode, iside, nerr0
       character(len=:), allocatable :: key, w
       logical :: ok
@@ -139,9 +141,9 @@ contains
       integer :: iv
 
       nerr0 = d%errors%n
-      allocate (spec(0))
+      allocate (spec(0), rigids(0))
       nif = 0
-      mode = 0          ! 0 none, 1 surface nodes, 2 pairs
+      mode = 0          ! 0 none, 1 surface nodes, 2 pairs, 3 polyline vertices
       iside = 0
       do while (.not. d%at_end())
          if (is_block_card(d, d%peek())) exit
@@ -152,8 +154,11 @@ contains
                call read_node_list(ic)
             case (2)
                call read_pair(ic)
+            case (3)
+               call read_vertex(ic)
             case default
-               call d%error_at(ic, 1, 'E-CARD', 'CONTACT: a data card must follow a SURFACE or PAIRS card, found "'// &
+               call d%error_at(ic, 1, 'E-CARD', 'CONTACT: a data card must follow a SURFACE, PAIRS or RIGID POLYLINE '// &
+                               'card, found "'// &
                                trim(d%cards(ic)%text)//'"')
             end select
             cycle
@@ -299,6 +304,40 @@ contains
          case ('PAIRS')
             call need_interface(ic)
             mode = 2
+         case ('MATCHING')
+            call need_interface(ic)
+            call d%get_word(ic, 11, 20, 'CONTACT/MATCHING', 'MATCHING', w, ok)
+            call tail(ic, 21, 'NODE or SEGMENT in columns 11-20', ok)
+            if (ok) then
+               if (w == 'NODE') then
+                  spec(nif)%law%matching = MATCH_NODE
+               else if (w == 'SEGMENT') then
+                  spec(nif)%law%matching = MATCH_SEGMENT
+               else
+                  call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/MATCHING (columns 11-20) expected NODE '// &
+                                  '(node-to-node pairs) or SEGMENT (nodes of A against edges of B), found "'//w//'"')
+               end if
+               if (spec(nif)%have_matching) call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT/MATCHING: given twice '// &
+                                                            'for this interface')
+               spec(nif)%have_matching = .true.
+               spec(nif)%matching_line = d%cards(ic)%line
+            end if
+         case ('RIGID')
+            call need_interface(ic)
+            call read_rigid(ic)
+         case ('AUGMENTED')
+            call d%get_real(ic, 11, 20, 'CONTACT/AUGMENTED', 'FACTOR', v1, ok, default=100.0_dp)
+            call d%get_real(ic, 21, 30, 'CONTACT/AUGMENTED', 'TOL', v2, ok, default=1.0e-6_dp)
+            call tail(ic, 31, 'FACTOR and TOL in columns 11-30', ok)
+            if (ok) then
+               if (.not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/AUGMENTED: FACTOR (columns '// &
+                                                        '11-20) expected a positive penalty factor, found '//rtoa(v1))
+               if (.not. (v2 > 0.0_dp .and. v2 < 1.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/AUGMENTED: '// &
+                            'TOL (columns 21-30) expected a tolerance in (0, 1) relative to the smallest contact '// &
+                            'element, found '//rtoa(v2))
+               m%contact%opts%aug_factor = v1
+               m%contact%opts%aug_tol = v2
+            end if
          case ('UPDATE', 'SCHEME')
             ! SCHEME INCREMENTAL (the paper) = UPDATE EXPLICIT; SCHEME NEWTON = UPDATE RETURN;
             ! SCHEME MODIFIED = RETURN with the stiffness kept (modified Newton)
@@ -364,6 +403,7 @@ contains
                call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/REPEATS (columns 11-20) expected 1..10000, found '//itoa(iv))
             else if (ok) then
                m%contact%opts%max_repeats = iv
+               m%contact%opts%repeats_given = .true.
             end if
          case ('START')
             call d%get_real(ic, 11, 20, 'CONTACT/START', 'PM', v1, ok, default=-1.0_dp)
@@ -382,8 +422,8 @@ contains
             end if
          case default
             call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT: unknown keyword "'//key//'" (expected INTERFACE, LAW, '// &
-                            'UNITS, NORMAL, TANGENT, FRICTION, HARDENING, SLIP, SURFACE, PAIRS, TOLERANCE, SCHEME, '// &
-                            'UPDATE, CONVERGE, FIRSTINC, NEWCLOSED, REPEATS or START)')
+                            'UNITS, NORMAL, TANGENT, FRICTION, HARDENING, SLIP, SURFACE, PAIRS, MATCHING, RIGID, '// &
+                            'TOLERANCE, SCHEME, UPDATE, CONVERGE, FIRSTINC, NEWCLOSED, REPEATS, START or AUGMENTED)')
          end select
       end do
 
@@ -393,8 +433,89 @@ contains
          return
       end if
       if (d%errors%n > nerr0) return
+      m%contact%rigids = rigids
       call define_contact(m, spec, d%file, d%errors, warnings)
    contains
+      !> RIGID card: SHAPE (11-20), NREF (21-30), then FLAT X1 Y1 X2 Y2 or
+      !! CIRCLE XC YC R (31-70); POLYLINE takes its vertices from data cards.
+      subroutine read_rigid(icard)
+         integer, intent(in) :: icard
+         character(len=:), allocatable :: shape
+         integer :: nref
+         real(dp) :: x(4)
+         logical :: okr
+         type(rigid_body_t) :: rb
+         okr = .true.
+         if (spec(nif)%law%rigid > 0) then
+            call d%error_at(icard, 1, 'E-RIGID', 'CONTACT/RIGID: this interface already has a rigid body '// &
+                            '(one RIGID card per interface; start another INTERFACE)')
+            return
+         end if
+         call d%get_word(icard, 11, 20, 'CONTACT/RIGID', 'SHAPE', shape, okr)
+         call d%get_int(icard, 21, 30, 'CONTACT/RIGID', 'NREF', nref, okr)
+         if (.not. okr) return
+         if (nref < 1 .or. nref > m%npoin) then
+            call d%error_at(icard, 21, 'E-RANGE', 'CONTACT/RIGID: NREF (columns 21-30) expected the reference node '// &
+                            '1..'//itoa(m%npoin)//', found '//itoa(nref))
+            return
+         end if
+         rb%node = nref
+         rb%line = d%cards(icard)%line
+         select case (shape)
+         case ('FLAT')
+            call d%get_real(icard, 31, 40, 'CONTACT/RIGID', 'X1', x(1), okr)
+            call d%get_real(icard, 41, 50, 'CONTACT/RIGID', 'Y1', x(2), okr)
+            call d%get_real(icard, 51, 60, 'CONTACT/RIGID', 'X2', x(3), okr)
+            call d%get_real(icard, 61, 70, 'CONTACT/RIGID', 'Y2', x(4), okr)
+            call tail(icard, 71, 'FLAT, NREF, X1, Y1, X2, Y2 in columns 11-70', okr)
+            if (.not. okr) return
+            rb%shape = RIGID_POLYLINE
+            rb%xy = reshape(x, [2, 2])
+         case ('CIRCLE')
+            call d%get_real(icard, 31, 40, 'CONTACT/RIGID', 'XC', x(1), okr)
+            call d%get_real(icard, 41, 50, 'CONTACT/RIGID', 'YC', x(2), okr)
+            call d%get_real(icard, 51, 60, 'CONTACT/RIGID', 'R', x(3), okr)
+            call tail(icard, 61, 'CIRCLE, NREF, XC, YC, R in columns 11-60', okr)
+            if (.not. okr) return
+            if (.not. (x(3) > 0.0_dp)) then
+               call d%error_at(icard, 51, 'E-RIGID', 'CONTACT/RIGID: R (columns 51-60) expected a positive radius, '// &
+                               'found '//rtoa(x(3)))
+               return
+            end if
+            rb%shape = RIGID_CIRCLE
+            rb%centre = x(1:2)
+            rb%radius = x(3)
+            allocate (rb%xy(2, 0))
+         case ('POLYLINE')
+            call tail(icard, 31, 'POLYLINE and NREF in columns 11-30 (the vertices follow on data cards)', okr)
+            if (.not. okr) return
+            rb%shape = RIGID_POLYLINE
+            allocate (rb%xy(2, 0))
+            mode = 3
+         case default
+            call d%error_at(icard, 11, 'E-RIGID', 'CONTACT/RIGID: SHAPE (columns 11-20) expected FLAT, CIRCLE or '// &
+                            'POLYLINE, found "'//shape//'"')
+            return
+         end select
+         rigids = [rigids, rb]
+         spec(nif)%law%rigid = size(rigids)
+      end subroutine read_rigid
+
+      !> A vertex of a POLYLINE profile: X (1-10), Y (11-20).
+      subroutine read_vertex(icard)
+         integer, intent(in) :: icard
+         real(dp) :: x, y
+         logical :: okv
+         integer :: k
+         okv = .true.
+         call d%get_real(icard, 1, 10, 'CONTACT/RIGID', 'X', x, okv)
+         call d%get_real(icard, 11, 20, 'CONTACT/RIGID', 'Y', y, okv)
+         call tail(icard, 21, 'X, Y of a vertex in columns 1-20', okv)
+         if (.not. okv) return
+         k = size(rigids)
+         rigids(k)%xy = reshape([reshape(rigids(k)%xy, [size(rigids(k)%xy)]), x, y], [2, size(rigids(k)%xy, 2) + 1])
+      end subroutine read_vertex
+
       subroutine new_interface(icard)
          integer, intent(in) :: icard
          type(iface_spec_t), allocatable :: tmp(:)

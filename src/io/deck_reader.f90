@@ -1065,7 +1065,10 @@ contains
       if (m%ntype == NTYPE_AXISYMMETRIC .and. allocated(m%coord)) then
          tol = 1.0e-12_dp*max(maxval(abs(m%coord)), 1.0e-300_dp)
          do ip = 1, m%npoin
-            if (abs(m%coord(1, ip)) > tol) cycle
+            ! a rigid body's reference node moves axially only: a rigid ring
+            ! cannot change its radius (its radial restraint is added like
+            ! that of a node on the axis)
+            if (abs(m%coord(1, ip)) > tol .and. .not. is_reference_node(m, ip)) cycle
             found = .false.
             do k = 1, size(m%fixes)
                if (m%fixes(k)%node == ip) then
@@ -1084,6 +1087,16 @@ contains
          m%lambda(:, 1) = 1.0_dp
       end if
    end subroutine finish_model
+
+   !> Is node ip the reference node of a rigid body of the CONTACT block?
+   pure logical function is_reference_node(m, ip)
+      type(model_t), intent(in) :: m
+      integer, intent(in) :: ip
+      is_reference_node = .false.
+      if (.not. allocated(m%contact%rigids)) return
+      if (size(m%contact%rigids) == 0) return
+      is_reference_node = any(m%contact%rigids%node == ip)
+   end function is_reference_node
 
    !> Checks that need the whole model: geometry of every element, nodes that
    !! belong to no element, and rigid-body motion of every body.
@@ -1122,11 +1135,21 @@ contains
          end if
       end do
       do ip = 1, m%npoin
-         if (.not. used(ip)) then
+         if (.not. used(ip) .and. .not. is_reference_node(m, ip)) then
             call d%errors%add('E-UNUSED', 'NODES: node '//itoa(ip)//' belongs to no element '// &
-                              '(its displacement would be undetermined)', file=d%file, line=m%node_line(ip), col=1)
+                              '(its displacement would be undetermined; only the reference node of a rigid body '// &
+                              'in CONTACT may be a node of no element)', file=d%file, line=m%node_line(ip), col=1)
          end if
       end do
+      if (m%ntype == NTYPE_AXISYMMETRIC) then
+         do k = 1, size(m%fixes)
+            if (.not. is_reference_node(m, m%fixes(k)%node)) cycle
+            if (abs(m%fixes(k)%value(1)) > 0.0_dp) call d%errors%add('E-RIGID', 'RESTRAINTS: node '// &
+                itoa(m%fixes(k)%node)//' is the reference node of a rigid body, which can only move axially '// &
+                'in an axisymmetric model: its radial displacement must be 0, found UX = '// &
+                rtoa(m%fixes(k)%value(1)), file=d%file, line=m%fixes(k)%line, col=11)
+         end do
+      end if
       if (d%errors%n > 0) return
 
       ! bodies joined by ties or contact pairs are checked together

@@ -28,7 +28,8 @@ module results_hdf5
    use errors, only: status_t, STAT_IO
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
-   use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name
+   use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, law_name, &
+                            matching_name, rigid_shape_name, MAX_PAIR_NODES
    use xdmf_writer, only: write_xdmf, xdmf_path, CELL_NNODE, XDMF_CELL_CODE
    implicit none
    private
@@ -285,7 +286,8 @@ contains
       type(status_t), intent(inout) :: status
       integer(hid_t) :: gid, iid
       integer :: err, np, i, e
-      real(dp), allocatable :: v2(:, :)
+      real(dp), allocatable :: v2(:, :), wm(:, :)
+      integer, allocatable :: nm(:, :)
       character(len=16) :: name
       err = 0
       np = size(c%pairs)
@@ -312,14 +314,37 @@ contains
       call write_real2(gid, 'tangent', v2, err)
       call write_real1(gid, 'gap', c%pairs%g0, err)
       call write_real1(gid, 'area', c%pairs%area, err)
+      ! the master side of every pair: kind, nodes and weights (u_b = sum w u)
+      call write_int1(gid, 'kind', c%pairs%kind, err)
+      allocate (nm(MAX_PAIR_NODES - 1, np), wm(MAX_PAIR_NODES - 1, np))
+      do i = 1, np
+         nm(:, i) = c%pairs(i)%nodes(2:)
+         wm(:, i) = c%pairs(i)%w(2:)
+         nm(c%pairs(i)%nn:, i) = 0
+         wm(c%pairs(i)%nn:, i) = 0.0_dp
+      end do
+      call write_int2(gid, 'master_nodes', nm, err)
+      call write_real2(gid, 'master_weights', wm, err)
       call attr_string(gid, 'update', update_name(c%opts%update), err)
       call attr_int(gid, 'max_repeats', c%opts%max_repeats, err)
+      call attr_real1(gid, 'augmented', [c%opts%aug_factor, c%opts%aug_tol], err)
       do i = 1, size(c%ifaces)
          write (name, '(a,i0)') 'interface_', i
          call h5gcreate_f(gid, trim(name), iid, e)
          if (e < 0) err = e
          associate (f => c%ifaces(i))
-            call attr_string(iid, 'law', merge('ROUGH', 'IDEAL', f%law == 1), err)
+            call attr_string(iid, 'law', law_name(f%law), err)
+            call attr_string(iid, 'matching', matching_name(f%matching, f%rigid), err)
+            if (f%rigid > 0) then
+               associate (rb => c%rigids(f%rigid))
+                  call attr_string(iid, 'rigid_shape', rigid_shape_name(rb%shape), err)
+                  call attr_int(iid, 'rigid_node', rb%node, err)
+                  if (allocated(rb%xy)) then
+                     if (size(rb%xy, 2) > 0) call write_real2(iid, 'rigid_profile', rb%xy, err)
+                  end if
+                  call attr_real1(iid, 'rigid_circle', [rb%centre, rb%radius], err)
+               end associate
+            end if
             call attr_string(iid, 'units', units_name(f%units), err)
             call attr_real1(iid, 'normal_input', [f%cn_in, f%m_in, f%cn2_in, f%m2_in], err)
             call attr_real1(iid, 'normal_model', [f%cn, f%m, f%cn2, f%m2], err)

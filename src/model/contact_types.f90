@@ -13,11 +13,13 @@ module contact_types
    implicit none
    private
 
-   public :: interface_t, contact_pair_t, contact_options_t, contact_def_t
+   public :: interface_t, contact_pair_t, contact_options_t, contact_def_t, rigid_body_t
    public :: LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, FRICTION_COULOMB, FRICTION_FREDRIKSSON, &
              UNITS_KGF_UM, UNITS_N_UM, UNITS_MODEL, UPDATE_EXPLICIT, UPDATE_RETURN, &
              SLIP_IRREVERSIBLE, SLIP_GROSS, NEWCLOSED_SECANT, NEWCLOSED_TANGENT, KGF_PER_NMM2, &
              units_name, friction_name, update_name, slip_name
+   public :: PAIR_NODE, PAIR_SEGMENT, PAIR_RIGID, MATCH_NODE, MATCH_SEGMENT, MAX_PAIR_NODES, &
+             RIGID_POLYLINE, RIGID_CIRCLE, law_name, matching_name, rigid_shape_name
 
    integer, parameter :: LAW_ROUGH = 1             !! the paper's rough interface (springs)
    integer, parameter :: LAW_IDEAL = 2             !! smooth contact with Coulomb friction (reference)
@@ -38,6 +40,20 @@ module contact_types
 
    integer, parameter :: NEWCLOSED_SECANT = 1      !! a newly closed pair: secant of its penetration (SPEC §4.3)
    integer, parameter :: NEWCLOSED_TANGENT = 2     !! ... or the virgin tangent at the floor pressure
+
+   ! What the master side (B) of a pair is: a node (the paper's node-to-node
+   ! spring), a point on an edge of body B (node-to-segment), or a point of a
+   ! rigid body's profile, which moves with the body's reference node.
+   integer, parameter :: PAIR_NODE = 0             !! node a - node b
+   integer, parameter :: PAIR_SEGMENT = 1          !! node a - point of an edge of B (2 or 3 nodes)
+   integer, parameter :: PAIR_RIGID = 2            !! node a - point of a rigid profile (reference node)
+   integer, parameter :: MAX_PAIR_NODES = 8        !! slave node + up to 7 master nodes
+
+   integer, parameter :: MATCH_NODE = 1            !! node-to-node pairing (the paper's default)
+   integer, parameter :: MATCH_SEGMENT = 2         !! node-to-segment pairing (non-matching meshes)
+
+   integer, parameter :: RIGID_POLYLINE = 1        !! straight segments (FLAT is a two-point polyline)
+   integer, parameter :: RIGID_CIRCLE = 2          !! circle (a sphere in axisymmetry)
 
    !> kgf/cm² per N/mm² (1 kgf/cm² = 0.0980665 N/mm²).
    real(dp), parameter :: KGF_PER_NMM2 = 1.0_dp/0.0980665_dp
@@ -68,21 +84,52 @@ module contact_types
       integer :: slip_def = SLIP_IRREVERSIBLE
       ! pairing
       real(dp) :: tol = -1.0_dp        !! pairing tolerance (< 0: default from the mesh size)
+      integer :: matching = MATCH_NODE !! node-to-node or node-to-segment (surface B only)
+      integer :: rigid = 0             !! index of the rigid body that is side B (0: a surface)
       integer :: line = 0              !! deck line of the INTERFACE (or first) card
    end type interface_t
 
-   !> A zero-length two-node spring between node a (body A, above) and node b
-   !! (body B, below); the local axes (t, n) belong to body B, n points from B
-   !! into A.
+   !> A rigid body: a profile (polyline or circle) carried by a reference node,
+   !! which belongs to no element and moves the profile by its displacement
+   !! (translation only; the body does not rotate).  The profile's outward
+   !! normal points away from the body: a polyline is listed with the body on
+   !! its left, i.e. anticlockwise around the body like the edges of an element.
+   type :: rigid_body_t
+      integer :: shape = RIGID_POLYLINE
+      integer :: node = 0                   !! reference node
+      real(dp), allocatable :: xy(:, :)     !! (2, nvert) polyline vertices
+      real(dp) :: centre(2) = 0.0_dp        !! circle
+      real(dp) :: radius = 0.0_dp
+      integer :: line = 0                   !! deck line of the RIGID card
+   end type rigid_body_t
+
+   !> A zero-length contact element between node a (body A, the slave side)
+   !! and a point b of body B (the master side): node b itself (the paper's
+   !! two-node spring), the surface of B interpolated from its nodes (averaged
+   !! over the tributary zone of node a, see contact_definition), or a point of
+   !! a rigid profile moved by the rigid body's reference node.  The
+   !! local axes (t, n) belong to body B, n points from B into A.  In every
+   !! case the displacement of b is u_b = sum_k w(k) u(nodes(k)), k = 2..nn,
+   !! so that the relative displacement u_a - u_b is linear in the pair's
+   !! 2 nn dofs.
    type :: contact_pair_t
       integer :: node_a = 0
-      integer :: node_b = 0
+      integer :: node_b = 0                 !! node b; for a segment the master node nearest b,
+                                            !! for a rigid profile the reference node
       integer :: iface = 1
+      integer :: kind = PAIR_NODE           !! PAIR_NODE, PAIR_SEGMENT or PAIR_RIGID
+      integer :: nn = 2                     !! nodes of the element: a, then the master nodes
+      integer :: nodes(MAX_PAIR_NODES) = 0  !! (a, b) or (a, reference node) or (a, master nodes of B)
+      real(dp) :: w(MAX_PAIR_NODES) = [1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]  !! w(2:nn): weights of b
       real(dp) :: t(2) = [1.0_dp, 0.0_dp]   !! unit tangent (cos alpha, sin alpha), eq. (3.31)
       real(dp) :: n(2) = [0.0_dp, 1.0_dp]   !! unit normal, n = (-sin alpha, cos alpha)
       real(dp) :: g0 = 0.0_dp               !! initial gap along n, eq. (3.8)
       real(dp) :: area = 0.0_dp             !! lumped contact area A_j, eqs. (3.22), (3.26), (A1)-(A6)
-      real(dp) :: position(2) = 0.0_dp      !! coordinates of node b (for output)
+      real(dp) :: position(2) = 0.0_dp      !! coordinates of point b (node b for node-to-node; for output)
+      ! scales of the ideal (augmented Lagrangian) contact, from the definition
+      real(dp) :: length = 0.0_dp           !! length of the contact elements at the pair (mean of its edges)
+      real(dp) :: share = 0.0_dp            !! equal share of the areas of those edges (> 0 also on the axis)
+      real(dp) :: estar = 0.0_dp            !! contact modulus 1/((1-nu_a^2)/E_a + (1-nu_b^2)/E_b)
       integer :: line = 0                   !! deck line that created the pair
    end type contact_pair_t
 
@@ -99,6 +146,10 @@ module contact_types
       logical :: modified = .false.         !! RETURN with the stiffness of the first solution (modified Newton)
       real(dp) :: p_min_ratio = 1.0e-3_dp   !! floor of a newly closed pair's secant pressure, x p_m
       integer :: newly_closed = NEWCLOSED_SECANT   !! stiffness rule for a pair that closes
+      ! ideal contact (augmented Lagrangian, SPEC reference model)
+      real(dp) :: aug_factor = 100.0_dp     !! penalty per unit area = aug_factor E* / length
+      real(dp) :: aug_tol = 1.0e-6_dp       !! penetration and stick drift accepted, x smallest length
+      logical :: repeats_given = .false.    !! REPEATS card given (else a default per law)
    end type contact_options_t
 
    !> Everything the deck says about contact.
@@ -106,6 +157,7 @@ module contact_types
       logical :: active = .false.
       type(interface_t), allocatable :: ifaces(:)
       type(contact_pair_t), allocatable :: pairs(:)
+      type(rigid_body_t), allocatable :: rigids(:)
       type(contact_options_t) :: opts
    end type contact_def_t
 
@@ -146,6 +198,38 @@ contains
          s = 'EXPLICIT'
       end if
    end function update_name
+
+   pure function law_name(l) result(s)
+      integer, intent(in) :: l
+      character(len=:), allocatable :: s
+      if (l == LAW_IDEAL) then
+         s = 'IDEAL'
+      else
+         s = 'ROUGH'
+      end if
+   end function law_name
+
+   pure function matching_name(mt, rigid) result(s)
+      integer, intent(in) :: mt, rigid
+      character(len=:), allocatable :: s
+      if (rigid > 0) then
+         s = 'RIGID'
+      else if (mt == MATCH_SEGMENT) then
+         s = 'SEGMENT'
+      else
+         s = 'NODE'
+      end if
+   end function matching_name
+
+   pure function rigid_shape_name(k) result(s)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: s
+      if (k == RIGID_CIRCLE) then
+         s = 'CIRCLE'
+      else
+         s = 'POLYLINE'
+      end if
+   end function rigid_shape_name
 
    pure function slip_name(u) result(s)
       integer, intent(in) :: u
