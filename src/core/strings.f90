@@ -3,9 +3,15 @@ module strings
    use kinds, only: dp
    implicit none
    private
-   public :: upper, lower, itoa, rtoa, basename, strip_extension
+   public :: upper, lower, same_name, itoa, rtoa, basename, strip_extension
 
 contains
+
+   !> True if two names are equal apart from case and trailing blanks.
+   pure logical function same_name(a, b)
+      character(len=*), intent(in) :: a, b
+      same_name = upper(trim(a)) == upper(trim(b))
+   end function same_name
 
    !> Upper-case copy of a string.
    pure function upper(s) result(r)

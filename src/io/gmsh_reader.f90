@@ -24,7 +24,7 @@
 module gmsh_reader
    use kinds, only: dp
    use errors, only: error_list_t
-   use strings, only: itoa, rtoa
+   use strings, only: itoa, rtoa, same_name
    use model, only: model_t, node_set_t, edge_set_t, MAX_NODE
    use shape_2d, only: element_edge_nodes, nedges
    use quadrature, only: valid_ngaus
@@ -1085,7 +1085,7 @@ contains
          integer :: q
          mat_index = 0
          do q = 1, size(mat_names)
-            if (same_text(mat_names(q), name)) then
+            if (same_name(mat_names(q), name)) then
                mat_index = q
                return
             end if
@@ -1225,7 +1225,7 @@ contains
       integer, intent(in) :: dim
       character(len=*), intent(in) :: name
       do g = 1, size(msh%groups)
-         if (msh%groups(g)%dim == dim .and. same_text(msh%groups(g)%name, name)) return
+         if (msh%groups(g)%dim == dim .and. same_name(msh%groups(g)%name, name)) return
       end do
       g = 0
    end function group_by_name
@@ -1245,18 +1245,4 @@ contains
       if (len(s) == 0) s = 'none'
    end function group_list
 
-   pure logical function same_text(a, b)
-      character(len=*), intent(in) :: a, b
-      integer :: i, ca, cb
-      same_text = .false.
-      if (len_trim(a) /= len_trim(b)) return
-      do i = 1, len_trim(a)
-         ca = iachar(a(i:i))
-         cb = iachar(b(i:i))
-         if (ca >= 97 .and. ca <= 122) ca = ca - 32
-         if (cb >= 97 .and. cb <= 122) cb = cb - 32
-         if (ca /= cb) return
-      end do
-      same_text = .true.
-   end function same_text
 end module gmsh_reader

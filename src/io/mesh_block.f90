@@ -15,7 +15,7 @@
 !! the .msh file and line (see gmsh_reader).
 module mesh_block
    use errors, only: error_list_t
-   use strings, only: itoa
+   use strings, only: itoa, same_name
    use deck_lexer, only: deck_t
    use model, only: model_t
    use gmsh_reader, only: gmsh_mesh_t, read_gmsh, gmsh_to_model
@@ -144,18 +144,4 @@ contains
       end if
    end function mesh_path
 
-   pure logical function same_name(a, b)
-      character(len=*), intent(in) :: a, b
-      integer :: i, ca, cb
-      same_name = .false.
-      if (len_trim(a) /= len_trim(b)) return
-      do i = 1, len_trim(a)
-         ca = iachar(a(i:i))
-         cb = iachar(b(i:i))
-         if (ca >= 97 .and. ca <= 122) ca = ca - 32
-         if (cb >= 97 .and. cb <= 122) cb = cb - 32
-         if (ca /= cb) return
-      end do
-      same_name = .true.
-   end function same_name
 end module mesh_block

@@ -9,6 +9,7 @@
 module model
    use kinds, only: dp
    use contact_types, only: contact_def_t
+   use strings, only: same_name
    implicit none
    private
 
@@ -154,20 +155,6 @@ contains
       k = 0
    end function find_edge_set
 
-   pure logical function same_name(a, b)
-      character(len=*), intent(in) :: a, b
-      integer :: i, ca, cb
-      same_name = .false.
-      if (len_trim(a) /= len_trim(b)) return
-      do i = 1, len_trim(a)
-         ca = iachar(a(i:i))
-         cb = iachar(b(i:i))
-         if (ca >= 97 .and. ca <= 122) ca = ca - 32
-         if (cb >= 97 .and. cb <= 122) cb = cb - 32
-         if (ca /= cb) return
-      end do
-      same_name = .true.
-   end function same_name
 
    !> Name of an analysis type, for listings and result files.
    pure function ntype_name(ntype) result(s)

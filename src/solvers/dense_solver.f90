@@ -15,16 +15,12 @@ module dense_solver
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp, i8
    use errors, only: status_t, fatal_internal, STAT_SINGULAR, STAT_SOLVER
-   use linear_solver, only: linear_solver_t, solver_stats_t
+   use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
    implicit none
    private
 
    public :: dense_solver_t
 
-   integer, parameter :: ST_EMPTY = 0       ! analyse not called
-   integer, parameter :: ST_ASSEMBLING = 1  ! k holds assembled values
-   integer, parameter :: ST_FACTORED = 2    ! f holds a valid factor
-   integer, parameter :: ST_FAILED = 3      ! last factorization failed
 
    interface
       !> LAPACK: Cholesky factorization of a symmetric positive definite matrix.
@@ -65,11 +61,6 @@ module dense_solver
       real(dp), allocatable, private :: k(:, :)     ! assembled matrix, upper triangle used
       real(dp), allocatable, private :: f(:, :)     ! Cholesky factor U (upper)
       real(dp), allocatable, private :: base(:, :)  ! stored copy of K_AB
-      integer, private :: state = ST_EMPTY
-      integer, private :: bad_eq = 0
-      character(len=:), allocatable, private :: fail_msg
-      integer(i8), private :: n_outside = 0         ! entries with ieq > neq
-      integer(i8), private :: base_outside = 0
    contains
       procedure :: analyse => dense_analyse
       procedure :: zero => dense_zero
@@ -80,7 +71,6 @@ module dense_solver
       procedure :: solve => dense_solve
       procedure :: free => dense_free
       procedure :: name => dense_name
-      procedure :: failed_equation => dense_failed_equation
    end type dense_solver_t
 
 contains
@@ -165,12 +155,8 @@ contains
       real(dp), intent(in) :: ke(:, :)    !! element matrix, size(ieq) square, symmetric
       integer :: ia, ib, i, j, nd
 
-      if (this%state /= ST_ASSEMBLING) call fatal_internal( &
-         'dense solver: add_element outside assembly (call analyse, zero or restore_base first)', &
-         'dense_solver.f90', 170)
+      call this%check_element(ieq, ke, 'dense_solver.f90', 158)
       nd = size(ieq)
-      if (size(ke, 1) /= nd .or. size(ke, 2) /= nd) call fatal_internal( &
-         'dense solver: element matrix and equation list differ in size', 'dense_solver.f90', 173)
       do ib = 1, nd
          j = ieq(ib)
          if (j <= 0) cycle
@@ -370,13 +356,7 @@ contains
       if (allocated(this%k)) deallocate (this%k)
       if (allocated(this%f)) deallocate (this%f)
       if (allocated(this%base)) deallocate (this%base)
-      this%neq = 0
-      this%state = ST_EMPTY
-      this%bad_eq = 0
-      this%fail_msg = ''
-      this%n_outside = 0
-      this%base_outside = 0
-      this%stats = solver_stats_t()
+      call this%reset_common()
    end subroutine dense_free
 
    !> Name of the solver as given in the deck.
@@ -388,11 +368,6 @@ contains
       s = 'dense'
    end function dense_name
 
-   !> Equation at which the last factorization failed (0 if none or unknown).
-   pure integer function dense_failed_equation(this) result(eq)
-      class(dense_solver_t), intent(in) :: this
-      eq = this%bad_eq
-   end function dense_failed_equation
 
    !> Message of a zero or negative pivot, naming the equation.
    pure function pivot_message(j, dj, kjj) result(msg)

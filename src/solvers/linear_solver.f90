@@ -19,11 +19,18 @@
 !! symbolic work is done once.  The driver never knows which solver it holds.
 module linear_solver
    use kinds, only: dp, i8
-   use errors, only: status_t
+   use errors, only: status_t, fatal_internal
    implicit none
    private
 
    public :: linear_solver_t, solver_stats_t
+   public :: ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
+
+   !> Life-cycle states shared by every implementation.
+   integer, parameter :: ST_EMPTY = 0       !! no pattern: analyse not called
+   integer, parameter :: ST_ASSEMBLING = 1  !! the matrix holds assembled values
+   integer, parameter :: ST_FACTORED = 2    !! the factors are valid
+   integer, parameter :: ST_FAILED = 3      !! the last factorization failed
 
    !> Figures every solver reports after a factorization.
    type :: solver_stats_t
@@ -40,6 +47,14 @@ module linear_solver
    type, abstract :: linear_solver_t
       integer :: neq = 0
       type(solver_stats_t) :: stats
+      !> Bookkeeping common to the implementations (read and set by them only).
+      integer :: state = ST_EMPTY
+      integer :: bad_eq = 0                      !! equation of the failed pivot
+      character(len=:), allocatable :: fail_msg  !! message of the failed factorization
+      integer(i8) :: n_outside = 0               !! assembled entries outside the pattern
+      integer(i8) :: base_outside = 0            !! the same, at store_base
+      integer :: first_outside(2) = 0            !! (row, column) of the first of them
+      integer :: base_first_outside(2) = 0
    contains
       procedure(analyse_i), deferred :: analyse
       procedure(zero_i), deferred :: zero
@@ -50,7 +65,9 @@ module linear_solver
       procedure(solve_i), deferred :: solve
       procedure(zero_i), deferred :: free
       procedure(name_i), deferred :: name
-      procedure(bad_eq_i), deferred :: failed_equation
+      procedure :: failed_equation
+      procedure :: reset_common
+      procedure :: check_element
    end type linear_solver_t
 
    abstract interface
@@ -96,11 +113,41 @@ module linear_solver
          class(linear_solver_t), intent(in) :: this
          character(len=:), allocatable :: s
       end function name_i
-
-      !> Equation at which the last factorization failed (0 if none or unknown).
-      pure integer function bad_eq_i(this)
-         import :: linear_solver_t
-         class(linear_solver_t), intent(in) :: this
-      end function bad_eq_i
    end interface
+
+contains
+
+   !> Equation at which the last factorization failed (0 if none or unknown).
+   pure integer function failed_equation(this) result(eq)
+      class(linear_solver_t), intent(in) :: this
+      eq = this%bad_eq
+   end function failed_equation
+
+   !> Reset the common bookkeeping: the solver is as new (statistics too).
+   subroutine reset_common(this)
+      class(linear_solver_t), intent(inout) :: this
+      this%neq = 0
+      this%state = ST_EMPTY
+      this%bad_eq = 0
+      this%fail_msg = ''
+      this%n_outside = 0
+      this%base_outside = 0
+      this%first_outside = 0
+      this%base_first_outside = 0
+      this%stats = solver_stats_t()
+   end subroutine reset_common
+
+   !> Programming errors of `add_element`: called outside assembly, or an
+   !! element matrix whose size differs from its equation list.
+   subroutine check_element(this, ieq, ke, file, line)
+      class(linear_solver_t), intent(in) :: this
+      integer, intent(in) :: ieq(:)
+      real(dp), intent(in) :: ke(:, :)
+      character(len=*), intent(in) :: file   !! source file of the caller
+      integer, intent(in) :: line            !! line of the caller
+      if (this%state /= ST_ASSEMBLING) call fatal_internal(this%name()// &
+         ' solver: add_element outside assembly (call analyse, zero or restore_base first)', file, line)
+      if (size(ke, 1) /= size(ieq) .or. size(ke, 2) /= size(ieq)) call fatal_internal( &
+         this%name()//' solver: element matrix and equation list differ in size', file, line)
+   end subroutine check_element
 end module linear_solver

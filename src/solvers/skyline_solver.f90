@@ -26,17 +26,13 @@ module skyline_solver
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp, i8
    use errors, only: status_t, fatal_internal, STAT_SINGULAR, STAT_SOLVER
-   use linear_solver, only: linear_solver_t, solver_stats_t
+   use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
    implicit none
    private
 
    public :: skyline_solver_t, graph_profile
 
    !> Life-cycle states (private): what the values in `a` currently are.
-   integer, parameter :: ST_EMPTY = 0       ! no pattern: analyse not called
-   integer, parameter :: ST_ASSEMBLING = 1  ! a holds assembled matrix values
-   integer, parameter :: ST_FACTORED = 2    ! a holds L and D
-   integer, parameter :: ST_FAILED = 3      ! factorization stopped; a is partly reduced
 
    !> Profile LDL^T solver of a symmetric positive definite system.
    type, extends(linear_solver_t) :: skyline_solver_t
@@ -52,13 +48,6 @@ module skyline_solver
       integer(i8), allocatable, private :: jdiag(:)  ! (0:neq) address of diagonal j in a
       real(dp), allocatable, private :: a(:)         ! profile values, matrix or factors
       real(dp), allocatable, private :: base(:)      ! stored copy of K_AB
-      integer, private :: state = ST_EMPTY
-      integer, private :: bad_eq = 0                 ! equation of the failed pivot
-      character(len=:), allocatable, private :: fail_msg
-      integer(i8), private :: n_outside = 0          ! assembled entries outside the profile
-      integer(i8), private :: base_outside = 0       ! the same, at store_base
-      integer, private :: first_outside(2) = 0       ! (row, column) of the first of them
-      integer, private :: base_first_outside(2) = 0
    contains
       procedure :: analyse => skyline_analyse
       procedure :: zero => skyline_zero
@@ -69,7 +58,6 @@ module skyline_solver
       procedure :: solve => skyline_solve
       procedure :: free => skyline_free
       procedure :: name => skyline_name
-      procedure :: failed_equation => skyline_failed_equation
       procedure :: profile_length => skyline_profile_length
       procedure :: mean_column_height => skyline_mean_column_height
       procedure :: max_column_height => skyline_max_column_height
@@ -258,12 +246,8 @@ contains
       integer :: ia, ib, i, j, nd
       integer(i8) :: p
 
-      if (this%state /= ST_ASSEMBLING) call fatal_internal( &
-         'skyline solver: add_element outside assembly (call analyse, zero or restore_base first)', &
-         'skyline_solver.f90', 263)
+      call this%check_element(ieq, ke, 'skyline_solver.f90', 249)
       nd = size(ieq)
-      if (size(ke, 1) /= nd .or. size(ke, 2) /= nd) call fatal_internal( &
-         'skyline solver: element matrix and equation list differ in size', 'skyline_solver.f90', 266)
       do ib = 1, nd
          j = ieq(ib)
          if (j <= 0) cycle
@@ -493,15 +477,7 @@ contains
       if (allocated(this%jdiag)) deallocate (this%jdiag)
       if (allocated(this%a)) deallocate (this%a)
       if (allocated(this%base)) deallocate (this%base)
-      this%neq = 0
-      this%state = ST_EMPTY
-      this%bad_eq = 0
-      this%fail_msg = ''
-      this%n_outside = 0
-      this%base_outside = 0
-      this%first_outside = 0
-      this%base_first_outside = 0
-      this%stats = solver_stats_t()
+      call this%reset_common()
    end subroutine skyline_free
 
    !> Name of the solver as given in the deck.
@@ -513,11 +489,6 @@ contains
       s = 'skyline'
    end function skyline_name
 
-   !> Equation at which the last factorization failed (0 if none or unknown).
-   pure integer function skyline_failed_equation(this) result(eq)
-      class(skyline_solver_t), intent(in) :: this
-      eq = this%bad_eq
-   end function skyline_failed_equation
 
    !> Number of stored entries of the profile: sum_j (h_j + 1).
    pure function skyline_profile_length(this) result(nprof)

@@ -36,17 +36,13 @@ module umfpack_solver
    use kinds, only: dp, i8
    use errors, only: status_t, fatal_internal, STAT_SINGULAR, STAT_SOLVER
    use strings, only: itoa, rtoa
-   use linear_solver, only: linear_solver_t, solver_stats_t
+   use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
    use umfpack_c
    implicit none
    private
 
    public :: umfpack_solver_t, umfpack_status_text
 
-   integer, parameter :: ST_EMPTY = 0       ! no pattern
-   integer, parameter :: ST_ASSEMBLING = 1  ! ax holds assembled values
-   integer, parameter :: ST_FACTORED = 2    ! numeric factors valid
-   integer, parameter :: ST_FAILED = 3      ! last factorization failed
 
    !> UMFPACK LU solver with a symbolic analysis kept per sparsity pattern.
    type, extends(linear_solver_t) :: umfpack_solver_t
@@ -60,11 +56,6 @@ module umfpack_solver
       real(c_double), private :: info(UMFPACK_INFO) = 0.0_c_double
       type(c_ptr), private :: symbolic = c_null_ptr
       type(c_ptr), private :: numeric = c_null_ptr
-      integer, private :: state = ST_EMPTY
-      integer, private :: bad_eq = 0
-      character(len=:), allocatable, private :: fail_msg
-      integer(i8), private :: n_outside = 0, base_outside = 0
-      integer, private :: first_outside(2) = 0, base_first_outside(2) = 0
       integer(i8), private :: symbolic_bytes = 0, numeric_bytes = 0
       integer, private :: symbolic_count = 0
    contains
@@ -77,7 +68,6 @@ module umfpack_solver
       procedure :: solve => umf_solve
       procedure :: free => umf_free
       procedure :: name => umf_name
-      procedure :: failed_equation => umf_failed_equation
       procedure :: nnz => umf_nnz
       procedure :: symbolic_analyses => umf_symbolic_analyses
       final :: umf_finalize
@@ -260,12 +250,8 @@ contains
       real(dp), intent(in) :: ke(:, :)    !! element matrix, size(ieq) square, symmetric
       integer :: ia, ib, i, j, nd, p
 
-      if (this%state /= ST_ASSEMBLING) call fatal_internal( &
-         'umfpack solver: add_element outside assembly (call analyse, zero or restore_base first)', &
-         'umfpack_solver.f90', 257)
+      call this%check_element(ieq, ke, 'umfpack_solver.f90', 253)
       nd = size(ieq)
-      if (size(ke, 1) /= nd .or. size(ke, 2) /= nd) call fatal_internal( &
-         'umfpack solver: element matrix and equation list differ in size', 'umfpack_solver.f90', 260)
       do ib = 1, nd
          j = ieq(ib)
          if (j <= 0) cycle
@@ -542,18 +528,10 @@ contains
       if (allocated(this%ai)) deallocate (this%ai)
       if (allocated(this%ax)) deallocate (this%ax)
       if (allocated(this%base)) deallocate (this%base)
-      this%neq = 0
-      this%state = ST_EMPTY
-      this%bad_eq = 0
-      this%fail_msg = ''
-      this%n_outside = 0
-      this%base_outside = 0
-      this%first_outside = 0
-      this%base_first_outside = 0
+      call this%reset_common()
       this%symbolic_bytes = 0
       this%numeric_bytes = 0
       this%symbolic_count = 0
-      this%stats = solver_stats_t()
    end subroutine umf_free
 
    !> Release the UMFPACK objects when the solver goes out of scope.
@@ -570,10 +548,6 @@ contains
       s = 'umfpack'
    end function umf_name
 
-   pure integer function umf_failed_equation(this) result(eq)
-      class(umfpack_solver_t), intent(in) :: this
-      eq = this%bad_eq
-   end function umf_failed_equation
 
    !> Entries of the CSC pattern (both triangles).
    pure integer(i8) function umf_nnz(this) result(n)
