@@ -373,7 +373,7 @@ CYL_RA = 50.0
 
 
 def cylinder(path, P, cn=0.44, e_half=4.0e4, nnode=4, h=0.5, rho_b=500.0, q=1.12, nincs=20,
-             update="EXPLICIT", hardening="OFF", mu=0.3, smooth=None, pen=1.0e-8, rigid="TIES", title=None,
+             update="EXPLICIT", hardening="OFF", mu=0.3, smooth=None, pen=1.0e-8, rigid="BODY", title=None,
              options=()):
     """Example 5.3, axisymmetric (SPEC §6.3): a rigid hollow cylinder (annulus 25 <= r <= 50 mm)
     pressed by the force P onto a half-space (quarter disc of radius rho_b, outer boundary
@@ -547,7 +547,8 @@ def variants():
     v["sphere_P200_c0.8_paper_nstart40"] = (sphere, dict(P=200.0, cn=0.8, nincs=40, nstart=40))
     # 5.3: three loads x three c_n with the moduli of D10, the printed and a steel half-space,
     # the smooth surface (ideal law, Coulomb 0.3; frictionless: ideal and its former stand-in,
-    # the penalty limit), the converged scheme, a finer mesh
+    # the penalty limit), the converged scheme, a finer mesh; the cylinder a rigid body, and as
+    # a tied layer of elements for comparison
     for lk, P in CYL_LOADS.items():
         for ek, E in CYL_MODULI.items():
             for cn in CYL_CN:
@@ -555,12 +556,15 @@ def variants():
         v["cyl_%s_ideal_E4e4" % lk] = (cylinder, dict(P=P, smooth="IDEAL"))
         v["cyl_%s_ideal0_E4e4" % lk] = (cylinder, dict(P=P, smooth="IDEAL", mu=0.0))
         v["cyl_%s_penalty_E4e4" % lk] = (cylinder, dict(P=P, smooth="PENALTY"))
+        v["cyl_%s_c0.2_E4e4_ties" % lk] = (cylinder, dict(P=P, cn=0.2, rigid="TIES"))
         v["cyl_%s_c0.2_E4e4_newton" % lk] = (cylinder, dict(P=P, cn=0.2, update="NEWTON"))
         v["cyl_%s_c0.2_E4e4_fine" % lk] = (cylinder, dict(P=P, cn=0.2, h=0.25))
     v["cyl_1MN_c0.2_E4e4_rho250"] = (cylinder, dict(P=1.0e6, cn=0.2, rho_b=250.0))
     v["cyl_1MN_c0.2_E4e4_rho1000"] = (cylinder, dict(P=1.0e6, cn=0.2, rho_b=1000.0))
     v["cyl_1MN_c0.2_E4e4_branch"] = (cylinder, dict(P=1.0e6, cn=0.2, hardening="ON        0.045"))
     v["cyl_1MN_c0.2_E4e4_n40"] = (cylinder, dict(P=1.0e6, cn=0.2, nincs=40))
+    v["cyl_1MN_c1_E4e4_ties"] = (cylinder, dict(P=1.0e6, cn=1.0, rigid="TIES"))
+    v["cyl_1MN_ideal_E4e4_ties"] = (cylinder, dict(P=1.0e6, smooth="IDEAL", rigid="TIES"))
     return v
 
 
