@@ -146,7 +146,8 @@ def sphere(args):
         a, p0, _ = mx.hertz_sphere(P)
         ps, as_, h = res[(P, None)]
         check(abs(ps / p0 - 1.0) < 0.05 and abs(as_ - a) < 2 * h,
-              "P = %g: the smooth contact (ideal law) is Hertz's" % P, "p(0)/p0 = %.3f, a_c/a = %.3f" % (ps / p0, as_ / a))
+              "P = %g: the smooth contact (ideal law) is Hertz's" % P,
+              "p(0)/p0 = %.3f, a_c/a = %.3f" % (ps / p0, as_ / a))
         p3, a3, _ = res[(P, 0.3)]
         p8, a8, _ = res[(P, 0.8)]
         check(p8 < p3 < ps, "P = %g: roughness lowers the peak, more for larger c_n" % P,
