@@ -67,6 +67,11 @@ def at(r, key, x):
 
 
 # ---------------------------------------------------------------------------- 5.1
+# Table 1, column 5 (the ideal model, mu = 0): u_T in um at 2x/B = 0.1, 0.2, ..., 0.8, 0.85, 0.9, 0.95, 1
+TABLE1_COL5_X = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.85, 0.9, 0.95, 1.0]
+TABLE1_COL5_UT = [0.948, 1.895, 2.824, 3.808, 4.818, 5.858, 6.966, 8.126, 8.835, 9.547, 10.41, 10.97]
+
+
 def punch(args):
     c2 = Run(args, "punch_col2", mx.punch, column=2)
     c3 = Run(args, "punch_col3", mx.punch, column=3)
@@ -88,6 +93,20 @@ def punch(args):
     ratio = (c2.last("shear") / c2.last("pressure"))[st == 2]
     check(bool(np.all(np.abs(ratio - 0.2) < 1e-6)), "Coulomb 0.2: p_T / p_n = 0.2 at the slipping nodes")
     check(bool(np.all(c5.last("slip")[1:] > c2.last("slip")[1:])), "friction reduces u_T at every node")
+    # the paper's ideal model (column 5): SPEC 6.1's acceptance target, u_T within 10 % of the
+    # paper at every node (the unknown foundation height alone moves u_T by 5-13 %,
+    # docs/validation.md); the rough layer spreads the pressure away from the edge
+    ci = Run(args, "punch_col5_ideal", mx.punch, column=5, law="IDEAL")
+    ut = np.array([1e3 * at(ci, "slip", 50.0 * s) for s in TABLE1_COL5_X])
+    dev = 100.0 * (ut / np.array(TABLE1_COL5_UT) - 1.0)
+    check(bool(np.all(np.abs(dev) <= 10.0)), "ideal, mu = 0: u_T within 10 % of Table 1, column 5 at every node",
+          "%+.1f ... %+.1f %%" % (dev.min(), dev.max()))
+    fsum = float(np.sum(ci.last("force_normal")))
+    check(abs(fsum / 600.0 - 1.0) < 1e-8, "ideal, mu = 0: sum F_n = 600 N", "%.12g" % fsum)
+    pi = ci.last("pressure")
+    check(int(np.argmax(pi)) == len(pi) - 1 and float(pi[-1]) > float(c5.last("pressure")[-1]),
+          "the pressure peaks at the punch edge, higher on the ideal interface than on the rough one",
+          "p(edge) = %.4f ideal, %.4f rough" % (pi[-1], c5.last("pressure")[-1]))
     up3 = c3.last("slip_irreversible")
     check(int(np.sum(up3 > 0)) > int(np.sum(up > 0)) and float(up3[-1]) > float(up[-1]),
           "Fredriksson (beta = 0.2): slip starts further in and u_T^p is larger than with Coulomb 0.2",
@@ -127,7 +146,8 @@ def sphere(args):
         a, p0, _ = mx.hertz_sphere(P)
         ps, as_, h = res[(P, None)]
         check(abs(ps / p0 - 1.0) < 0.05 and abs(as_ - a) < 2 * h,
-              "P = %g: the smooth (penalty) contact is Hertz's" % P, "p(0)/p0 = %.3f, a_c/a = %.3f" % (ps / p0, as_ / a))
+              "P = %g: the smooth contact (ideal law) is Hertz's" % P,
+              "p(0)/p0 = %.3f, a_c/a = %.3f" % (ps / p0, as_ / a))
         p3, a3, _ = res[(P, 0.3)]
         p8, a8, _ = res[(P, 0.8)]
         check(p8 < p3 < ps, "P = %g: roughness lowers the peak, more for larger c_n" % P,
@@ -150,6 +170,8 @@ def cylinder(args):
         pm = P / (np.pi * (mx.CYL_RA ** 2 - mx.CYL_RI ** 2))
         for cn in (0.2, 1.0):
             r = Run(args, "cyl_%g_%g" % (P, cn), mx.cylinder, P=P, cn=cn, h=2.5)
+            if P == 1.0e6 and cn == 0.2:
+                rigid_body = r
             p = r.last("pressure") / pm
             spread[(P, cn)] = float(p.max() - p.min())
             check(int(np.argmax(p)) == len(p) - 1 and p[0] > p[len(p) // 2],
@@ -159,14 +181,23 @@ def cylinder(args):
             check(abs(fsum / P - 1.0) < 1e-8, "P = %g, c_n = %g: sum F_n = P" % (P, cn))
             ft, fn = r.last("force_tangential"), r.last("force_normal")
             check(bool(np.all(np.abs(ft) <= 0.3 * fn * (1 + 1e-10))), "P = %g, c_n = %g: |p_T| <= 0.3 p_n" % (P, cn))
-            uz = r.steps[-1]["displacement"][r.node_a - 1, 1]
-            check(float(np.ptp(uz)) <= 1e-12 * abs(float(uz[0])), "P = %g, c_n = %g: the cylinder moves rigidly" % (P, cn))
     for P in (1.0e4, 1.0e6):
         check(spread[(P, 1.0)] < spread[(P, 0.2)], "P = %g: larger c_n gives a more uniform pressure" % P,
               "spread %.3f (c_n = 1) < %.3f (c_n = 0.2)" % (spread[(P, 1.0)], spread[(P, 0.2)]))
     for cn in (0.2, 1.0):
         check(spread[(1.0e4, cn)] < spread[(1.0e6, cn)],
               "c_n = %g: the lower load gives the more uniform pressure (roughness matters more)" % cn)
+    # the rigid body (RIGID FLAT) is the same physics as a tied layer of elements (u_r = 0,
+    # one u_z): same pressures and shears to round-off
+    t = Run(args, "cyl_1e6_0.2_ties", mx.cylinder, P=1.0e6, cn=0.2, h=2.5, rigid="TIES")
+    uz = t.steps[-1]["displacement"][t.node_a - 1, 1]
+    check(float(np.ptp(uz)) <= 1e-12 * abs(float(uz[0])), "TIES: the tied cylinder moves rigidly")
+    pm = 1.0e6 / (np.pi * (mx.CYL_RA ** 2 - mx.CYL_RI ** 2))
+    dp = float(np.max(np.abs(t.last("pressure") - rigid_body.last("pressure")))) / pm
+    dt = float(np.max(np.abs(t.last("shear") - rigid_body.last("shear")))) / pm
+    check(bool(np.allclose(t.x, rigid_body.x)) and dp < 1e-8 and dt < 1e-8,
+          "P = 1e6, c_n = 0.2: the rigid body and the tied mesh give the same contact stresses",
+          "max |dp|/p_m = %.1e, max |dp_T|/p_m = %.1e" % (dp, dt))
 
 
 def main():
