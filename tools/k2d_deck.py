@@ -104,64 +104,6 @@ class Deck:
         self.index[(body + "#%d" % len(self.nodes), round(x, 9), round(y, 9))] = len(self.nodes)
         return len(self.nodes)
 
-    def renumber(self, links=()):
-        """Reverse Cuthill-McKee renumbering of the nodes (a small skyline profile),
-        over the element graph plus the extra node links (e.g. the contact pairs).
-        Call it after the mesh is built and before nodes are selected for
-        restraints, loads or contact cards."""
-        assert not (self.fixes or self.ties or self.edge_loads or self.point_loads or self.contact)
-        n = len(self.nodes)
-        adj = [set() for _ in range(n + 1)]
-        for mat, c, b in self.elements:
-            for i in c:
-                adj[i].update(c)
-        for i, j in links:
-            adj[i].add(j)
-            adj[j].add(i)
-        for i in range(1, n + 1):
-            adj[i].discard(i)
-        deg = [len(a) for a in adj]
-        seen = [False] * (n + 1)
-        order = []
-
-        def bfs(start):
-            level = [start]
-            seen_l = {start}
-            last = [start]
-            while level:
-                nxt = []
-                for v in level:
-                    for w in adj[v]:
-                        if w not in seen_l:
-                            seen_l.add(w)
-                            nxt.append(w)
-                if nxt:
-                    last = nxt
-                level = nxt
-            return min(last, key=lambda v: deg[v])
-
-        for s0 in sorted(range(1, n + 1), key=lambda v: deg[v]):
-            if seen[s0]:
-                continue
-            start = bfs(bfs(s0))          # a pseudo-peripheral node of this component
-            queue = [start]
-            seen[start] = True
-            k = 0
-            while k < len(queue):
-                v = queue[k]
-                k += 1
-                for w in sorted(adj[v], key=lambda w: deg[w]):
-                    if not seen[w]:
-                        seen[w] = True
-                        queue.append(w)
-            order += queue
-        order.reverse()
-        new = {old: i + 1 for i, old in enumerate(order)}
-        self.nodes = [self.nodes[old - 1] for old in order]
-        self.index = {k: new[v] for k, v in self.index.items()}
-        self.elements = [(mat, [new[i] for i in c], b) for mat, c, b in self.elements]
-        return new
-
     def profile(self, links=()):
         """Skyline profile (stored entries, both dofs per node) of the node numbering."""
         low = list(range(len(self.nodes) + 1))
