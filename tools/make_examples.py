@@ -326,7 +326,7 @@ def sphere(path, P, cn=None, nnode=4, hdiv=20.0, fine=3.0, reach=5.0, q=1.12, rh
         "Assumed (not in the paper): a hemisphere, flat face up, loaded by the uniform pressure",
         "P/(pi R^2) = %.5f N/mm2; the half-space is a quarter disc (a hemisphere in 3D) of radius" % (P / (math.pi * R * R)),
         "%g mm, outer boundary fixed; %s elements, O-grid meshes; contact nodes at equal radii," % (
-            rho_b, {4: "Q4", 8: "Q8", 9: "Q9"}[nnode]),
+            rho_b, {3: "T3", 4: "Q4", 8: "Q8", 9: "Q9"}[nnode]),
         "node to node, spacing h = a_H/%g = %.4f mm up to r = %.3f mm, then growing to r = %.3f mm;" % (
             hdiv, h, min(fine * aH, r_reach), r_reach),
         "initial gaps g0(r) = R - sqrt(R^2 - r^2) from the node positions; load in %d increments" % nincs,
@@ -423,7 +423,7 @@ def cylinder(path, P, cn=0.44, e_half=4.0e4, nnode=4, h=0.5, rho_b=500.0, q=1.12
         "(R = 0.67 belongs to c_n = 0.44 by eq. 2.8), no hardening branch (HARDENING %s);" % hardening,
         "the half-space is a quarter disc (a hemisphere in 3D) of radius %g mm, outer boundary fixed;" % rho_b,
         "%s elements; %d contact pairs %.3f mm apart across the annulus, node to node, no gaps;" % (
-            {4: "Q4", 8: "Q8", 9: "Q9"}[nnode], len(sa), hh),
+            {3: "T3", 4: "Q4", 8: "Q8", 9: "Q9"}[nnode], len(sa), hh),
         "load in %d increments (5 %% first, then equal), update %s." % (nincs, update),
         ("OPTIONS CONDENSE OFF: the condensed solution leaves the sum of the pair forces off the load by" if
          "CONDENSE  OFF" in options else ""),
@@ -517,6 +517,21 @@ def write_variants(outdir, names=None):
         fn(path, **kw)
         paths[name] = path
     return paths
+
+
+def punch_graded(path, factor=0.25, radius=25.0, **kw):
+    """punch() with the mesh graded towards the corner of the punch, (x, y) = (50, 0): the
+    elements there shrink smoothly to `factor` times their size, the nodes within `radius`
+    mm of the corner move towards it, those beyond stay (k2d_deck.Deck.grade_towards).  The
+    pressure and u_T peak at the corner and converge slowest with a uniform refinement
+    (docs/accuracy-and-stability.md, the cost study)."""
+    d = punch(path, **kw)
+    d.grade_towards((50.0, 0.0), radius, factor)
+    d.comments = [c.replace("; contact nodes at the positions of Table 2;", ";") for c in d.comments]
+    d.comments.insert(-1, "Mesh graded towards the punch corner (50, 0): the elements there shrink to %g times" % factor)
+    d.comments.insert(-1, "their size, nodes within %g mm of the corner move towards it (radial map)." % radius)
+    d.write(path)
+    return d
 
 
 # The example decks of inputs/ (each runs in the test suite, so they are kept small)
