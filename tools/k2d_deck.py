@@ -216,6 +216,34 @@ class Deck:
         self.elements = [(mat, [new[a] for a in c], b) for mat, c, b in self.elements]
         return new
 
+    def grade_towards(self, centre, radius, factor):
+        """Move the nodes within `radius` of `centre` towards it, so that the elements there
+        shrink smoothly to `factor` times their size at the centre (0 < factor <= 1) and keep
+        their size at the radius: r -> radius * psi(r / radius), psi(t) = f t + 2 (1 - f) t^2
+        - (1 - f) t^3, with psi(0) = 0, psi'(0) = f, psi(1) = 1, psi'(1) = 1, psi' > 0.
+
+        The map is radial, so straight lines through the centre stay straight (a contact
+        line and a body edge meeting at a corner keep their nodes on them), coincident
+        nodes of two bodies stay coincident, and nodes beyond the radius do not move.
+        Call it after the mesh is complete; restraints, loads and surfaces refer to node
+        numbers and are not affected."""
+        if not 0.0 < factor <= 1.0:
+            raise ValueError("grade_towards: factor must lie in (0, 1]")
+        cx, cy = centre
+        moved = []
+        for x, y, b in self.nodes:
+            r = math.hypot(x - cx, y - cy)
+            if 0.0 < r < radius:
+                t = r / radius
+                s = factor + 2.0 * (1.0 - factor) * t - (1.0 - factor) * t * t    # psi(t) / t
+                x, y = cx + (x - cx) * s, cy + (y - cy) * s
+            moved.append((x, y, b))
+        self.nodes = moved
+        # the coordinate index follows the nodes (reference nodes keep their own keys)
+        self.index = {(key if "#" in key[0] else
+                       (key[0], round(self.nodes[k - 1][0], 9), round(self.nodes[k - 1][1], 9))): k
+                      for key, k in self.index.items()}
+
     def nodes_where(self, body, pred):
         """Node numbers of `body` whose coordinates satisfy pred(x, y), sorted by x then y."""
         sel = [(x, y, k) for k, (x, y, b) in enumerate(self.nodes, 1) if b == body and pred(x, y)]

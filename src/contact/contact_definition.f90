@@ -276,21 +276,27 @@ contains
    end subroutine match_surfaces
 
    !> Lumped contact area of every node of the given edges (A1-A6), only
-   !! over edges whose nodes are all flagged in `paired`.
+   !! over edges whose nodes are all flagged in `paired`.  On a quadratic
+   !! axisymmetric edge with an end node on the axis that node's share is
+   !! zero for a centred midside node; the coordinates of a deck (ten-column
+   !! fields) rarely centre it to more than about 1e-9 of the edge, and the
+   !! round-off share would make p = F/A of that pair meaningless, so it is
+   !! given to the midside node (the edge's area is unchanged).
    subroutine lumped_areas(m, ielem, iedge, paired, area)
       type(model_t), intent(in) :: m
       integer, intent(in) :: ielem(:), iedge(:)
       logical, intent(in) :: paired(:)         !! (npoin)
       real(dp), intent(out) :: area(:)         !! (npoin)
       integer, parameter :: ng = 5
-      real(dp) :: posgp(ng), weigp(ng), shape(3), deriv(3), xy(2, 3), djac, w
-      integer :: k, nd(3), nn, ig
+      real(dp) :: posgp(ng), weigp(ng), shape(3), deriv(3), xy(2, 3), djac, w, share(3), chord
+      integer :: k, nd(3), nn, ig, ie
       call gauss_legendre(ng, posgp, weigp)
       area = 0.0_dp
       do k = 1, size(ielem)
          call edge_nodes(m, ielem(k), iedge(k), nd, nn)
          if (.not. all(paired(nd(1:nn)))) cycle
          xy(:, 1:nn) = m%coord(:, nd(1:nn))
+         share = 0.0_dp
          do ig = 1, ng
             call edge_shape(nn, posgp(ig), shape(1:nn), deriv(1:nn))
             djac = hypot(dot_product(deriv(1:nn), xy(1, 1:nn)), dot_product(deriv(1:nn), xy(2, 1:nn)))
@@ -299,8 +305,19 @@ contains
             else
                w = m%mats(m%matno(ielem(k)))%thick
             end if
-            area(nd(1:nn)) = area(nd(1:nn)) + shape(1:nn)*w*djac*weigp(ig)
+            share(1:nn) = share(1:nn) + shape(1:nn)*w*djac*weigp(ig)
          end do
+         if (m%ntype == NTYPE_AXISYMMETRIC .and. nn == 3) then
+            ! edge order: the two end nodes, then the midside node
+            chord = norm2(xy(:, 2) - xy(:, 1))
+            do ie = 1, 2
+               if (abs(xy(1, ie)) <= 1.0e-6_dp*chord) then
+                  share(3) = share(3) + share(ie)
+                  share(ie) = 0.0_dp
+               end if
+            end do
+         end if
+         area(nd(1:nn)) = area(nd(1:nn)) + share(1:nn)
       end do
    end subroutine lumped_areas
 
