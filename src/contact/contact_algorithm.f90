@@ -60,7 +60,8 @@ module contact_algorithm
 
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
-             pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs
+             pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
+             start_force_normal
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
 
    integer, parameter :: NS_OPEN = 0, NS_LOADING = 1, NS_UNLOADING = 2
@@ -187,6 +188,21 @@ contains
          end do
       end if
    end subroutine contact_init
+
+   !> Normal force of pair j at the start of an increment, after
+   !! begin_increment: the committed force, except for an ideal pair that
+   !! starts closed, whose force in its mode is lam_n + eps_n u_n (the
+   !! penalty term of its current closure, a tension when it starts closed
+   !! across an open gap, START NSTART).  The driver puts the difference into
+   !! the first right-hand side, so the first solution already closes such
+   !! gaps instead of finding every start pair open and the body unsupported.
+   pure real(dp) function start_force_normal(cdef, st, j) result(fn)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(in) :: st
+      integer, intent(in) :: j
+      fn = st%s(j)%fn
+      if (is_ideal(cdef, j) .and. st%md(j)%closed) fn = st%lam_n(j) + st%eps_n(j)*st%s(j)%un
+   end function start_force_normal
 
    !> Does pair j obey the ideal law?
    pure logical function is_ideal(cdef, j)

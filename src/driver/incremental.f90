@@ -38,7 +38,7 @@ module incremental
    use contact_types, only: UPDATE_RETURN, contact_pair_t, MAX_PAIR_NODES, LAW_ROUGH, PAIR_RIGID
    use contact_algorithm, only: contact_state_t, contact_init, begin_increment, pair_matrix, &
                                 evaluate_pairs, commit_increment, pair_force_vector, law_drift, check_invariants, &
-                                augment_multipliers, pair_dofs, &
+                                augment_multipliers, pair_dofs, start_force_normal, &
                                 NS_OPEN, NS_LOADING, NS_UNLOADING, TS_SLIP
    use contact_element, only: pair_stiffness
    use condensation, only: condensed_t
@@ -555,8 +555,13 @@ contains
       if (an%has_contact) then
          call begin_increment(m%contact, st, first)
          do j = 1, an%npair
-            call pair_force_vector(m%contact, j, st%s(j)%fn, st%s(j)%ft, rvec(:, j))
+            call pair_force_vector(m%contact, j, st%s(j)%fn, st%s(j)%ft, rpred(:, j))
+            call pair_force_vector(m%contact, j, start_force_normal(m%contact, st, j), st%s(j)%ft, rvec(:, j))
+            k = 2*m%contact%pairs(j)%nn
+            ! (an ideal pair closed across a gap: the out-of-balance force of its penalty term)
+            call scatter_free(an%peq(1:k, j), rpred(1:k, j) - rvec(1:k, j), rhs)
          end do
+         rpred = 0.0_dp
       end if
       if (an%condensed) then
          allocate (wc(an%cond%nc), dvc(an%cond%nc), zc(an%cond%nc), rsum(an%cond%nc))

@@ -393,6 +393,20 @@ def annulus(name="annulus_rigid"):
     d.write(os.path.join(HERE, name + ".dat"))
 
 
+def v6_quadratic_start(name="v6_hertz_q8_start3"):
+    """Example 5.2's smooth sphere (tools/make_examples.py) with Q8 elements, a coarse
+    contact mesh and the paper's 3 start pairs, 5 % first increment: two of the
+    start pairs lie across open gaps, and a quadratic edge loaded at its midside
+    lifts its corner on the axis, so a first solution that ignored the gaps found
+    every start pair open (a singular system, or under condensation a body out of
+    equilibrium by 14 % of the load)."""
+    import make_examples
+    d = make_examples.sphere(os.path.join(HERE, name + ".dat"), P=200.0, cn=None, nnode=8, hdiv=2.5, nincs=5,
+                             update="NEWTON", rho_b=20.0, q=1.5, fine=2.0, reach=3.0)
+    d.comments.insert(0, "Ideal law, Q8, start pairs across gaps (tests/decks/ideal/make_decks.py, v6_quadratic_start).")
+    d.write(os.path.join(HERE, name + ".dat"))
+
+
 if __name__ == "__main__":
     ideal = ["LAW       IDEAL", "NORMAL           0.3       0.5", "FRICTION  NONE"]
     hertz_sphere("v6_hertz_p200", 200.0, ideal, fine=2.5)
@@ -411,3 +425,4 @@ if __name__ == "__main__":
     patch_nonmatching("patch_segment_plane_q8_ideal", 2, 8, "IDEAL", na=6, nb=4)
     patch_nonmatching("patch_segment_axi_q4_ideal", 3, 4, "IDEAL")
     polyline_patch()
+    v6_quadratic_start()
