@@ -328,8 +328,13 @@ contains
          call rf%set_status('failed at increment '//itoa(res%completed + 1)//': '//status%message)
          res%reported = .true.
          write (stderr, '(a)') 'kontakt2d: increment '//itoa(res%completed + 1)//' failed: '//status%message
-         write (stderr, '(a)') 'kontakt2d: '//itoa(res%completed)//' completed increment(s) are kept in '// &
-            res%results_path
+         if (m%results_every > 1) then
+            write (stderr, '(a)') 'kontakt2d: '//itoa(res%completed)//' increment(s) completed; every '// &
+               itoa(m%results_every)//'th of them (OPTIONS RESULTS) is kept in '//res%results_path
+         else
+            write (stderr, '(a)') 'kontakt2d: '//itoa(res%completed)//' completed increment(s) are kept in '// &
+               res%results_path
+         end if
       end if
       call rf%close()
       if (have_lis) close (lu)
@@ -891,6 +896,12 @@ contains
       if (nbad > 0) write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(nstep)//': '//itoa(nbad)// &
          ' invariant violation(s): '//imsg
 
+      ! OPTIONS RESULTS n: only every n-th step and the last go into the result file
+      if (.not. (last .or. mod(nstep, m%results_every) == 0)) then
+         res%completed = nstep
+         call list_and_report()
+         return
+      end if
       call rf%open_increment(nstep, lambda, res%iterations(nstep), res%repeats(nstep), .true., gid, status)
       if (.not. status%ok()) return
       err = 0
@@ -913,27 +924,31 @@ contains
       call rf%close_increment(gid, status)
       if (.not. status%ok()) return
       res%completed = nstep
-
-      if (have_lis .and. (lis_level == 'FULL' .or. last)) then
-         call list_displacements(lu, m, nstep, lambda, res%disp, res%react, an%restrained)
-         if (an%has_contact) call list_contact(lu, m%contact, res%contact, res%iterations(nstep), &
-                                               res%repeats(nstep), res%residual(nstep), res%drift(nstep))
-         call list_stresses(lu, m, res%gp_start, res%xygp, res%sig_gp)
-      end if
-      call system_clock(t1)
-      if (.not. opts%quiet) then
-         if (an%has_contact) then
-            write (stdout, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') nstep, maxval(abs(lambda)), &
-               maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), count(res%contact%s%closed), &
-               count(res%contact%s%closed .and. res%contact%s%tstate == TS_SLIP), res%iterations(nstep), &
-               res%repeats(nstep), res%residual(nstep), real(t1 - t0, dp)/real(rate, dp)
-         else
-            write (stdout, '(i6, f13.5, 3es14.5, f12.3)') nstep, maxval(abs(lambda)), &
-               maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), sum(res%react(1, :)), &
-               sum(res%react(2, :)), real(t1 - t0, dp)/real(rate, dp)
+      call list_and_report()
+   contains
+      !> The listing of the step (FULL, or the last) and its progress line.
+      subroutine list_and_report()
+         if (have_lis .and. (lis_level == 'FULL' .or. last)) then
+            call list_displacements(lu, m, nstep, lambda, res%disp, res%react, an%restrained)
+            if (an%has_contact) call list_contact(lu, m%contact, res%contact, res%iterations(nstep), &
+                                                  res%repeats(nstep), res%residual(nstep), res%drift(nstep))
+            call list_stresses(lu, m, res%gp_start, res%xygp, res%sig_gp)
          end if
-         flush (stdout)
-      end if
+         call system_clock(t1)
+         if (.not. opts%quiet) then
+            if (an%has_contact) then
+               write (stdout, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') nstep, maxval(abs(lambda)), &
+                  maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), count(res%contact%s%closed), &
+                  count(res%contact%s%closed .and. res%contact%s%tstate == TS_SLIP), res%iterations(nstep), &
+                  res%repeats(nstep), res%residual(nstep), real(t1 - t0, dp)/real(rate, dp)
+            else
+               write (stdout, '(i6, f13.5, 3es14.5, f12.3)') nstep, maxval(abs(lambda)), &
+                  maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), sum(res%react(1, :)), &
+                  sum(res%react(2, :)), real(t1 - t0, dp)/real(rate, dp)
+            end if
+            flush (stdout)
+         end if
+      end subroutine list_and_report
    end subroutine finish_step
 
    !> The method in use, for the header of the listing and the terminal.

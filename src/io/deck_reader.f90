@@ -458,6 +458,14 @@ contains
                m%autoinc_min = x
                m%autoinc_easy = iv
             end if
+         case ('RESULTS')
+            call d%get_int(ic, 11, 20, 'OPTIONS', 'RESULTS', iv, ok)
+            if (ok .and. iv < 1) then
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: RESULTS (columns 11-20) expected the step interval '// &
+                               'of the result file, an integer >= 1, found '//itoa(iv))
+            else if (ok) then
+               m%results_every = iv
+            end if
          case ('CONDENSE')
             call d%get_word(ic, 11, 20, 'OPTIONS', 'CONDENSE', val, ok)
             if (ok .and. all(val /= [character(len=4) :: 'AUTO', 'ON', 'OFF'])) then
@@ -468,7 +476,7 @@ contains
             end if
          case default
             call d%error_at(ic, 1, 'E-OPTION', 'OPTIONS: unknown option "'//key//'" (columns 1-10); '// &
-                            'known: LISTING, RENUMBER, AUTOINC, CONDENSE')
+                            'known: LISTING, RESULTS, RENUMBER, AUTOINC, CONDENSE')
          end select
       end do
    end subroutine read_options

@@ -125,6 +125,7 @@ module model
       character(len=:), allocatable :: condense
       ! output control
       character(len=:), allocatable :: listing_level  !! FULL, SHORT or NONE
+      integer :: results_every = 1                    !! result file: every n-th step and the last
       ! equation numbering: AUTO (RCM for skyline), RCM or NONE (OPTIONS RENUMBER)
       character(len=:), allocatable :: renumber
    end type model_t

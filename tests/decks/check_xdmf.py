@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Check a Kontakt2D XDMF sidecar against its HDF5 result file.
 
-    check_xdmf.py RESULTS.xdmf
+    check_xdmf.py RESULTS.xdmf [--every N --steps S]
 
 Well-formed XML (xml.etree); a temporal collection with one uniform grid per
 finished increment (root attribute increments_completed of the HDF5 file);
 every HDF DataItem names a dataset that exists, with the declared dimensions;
 hyperslabs select inside their dataset; topologies count the elements of the
-mesh and point at existing nodes (0-based).  Exit code 0 when all holds.
+mesh and point at existing nodes (0-based).  With --every N --steps S (OPTIONS
+RESULTS N on a run of S steps) the increment groups must be exactly the steps
+N, 2N, ... and the last, S.  Exit code 0 when all holds.
 """
 import os
 import sys
@@ -45,6 +47,7 @@ def hdf_dataset(item, base):
 
 def main():
     xdmf = sys.argv[1]
+    opts = dict(zip(sys.argv[2::2], sys.argv[3::2]))
     base = os.path.dirname(os.path.abspath(xdmf))
     root = ET.parse(xdmf).getroot()             # raises on malformed XML
     if root.tag != "Xdmf":
@@ -62,6 +65,11 @@ def main():
         h5name = os.path.splitext(os.path.basename(xdmf))[0] + ".h5"
     with h5py.File(os.path.join(base, h5name), "r") as f:
         ncomp = int(f.attrs["increments_completed"])
+        if "--every" in opts:
+            every, steps = int(opts["--every"]), int(opts["--steps"])
+            want = ["%05d" % k for k in range(1, steps + 1) if k % every == 0 or k == steps]
+            if sorted(f["increments"]) != want:
+                fail(f"increment groups {sorted(f['increments'])}, expected {want} (every {every} of {steps})")
         npoin = f["mesh/coordinates"].shape[0]
         nelem = f["mesh/element_nodes"].shape[0]
     if len(grids) != ncomp:
