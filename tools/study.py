@@ -63,6 +63,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import make_examples as mx  # noqa: E402
+from paper_figures import find_or_build  # noqa: E402  (build/kontakt2d, built if needed)
 
 ELEMENTS = {"T3": 3, "Q4": 4, "Q8": 8, "Q9": 9}
 SCHEMES = ["incremental", "newton", "automatic"]
@@ -345,19 +346,6 @@ def run_case(exe, out, c, timeout, repeats=REPEATS):
         (float("nan"),) * 2
     row["h_min"] = float(np.min(np.diff(r["x"]))) if "x" in r and len(r["x"]) > 1 else float("nan")
     return row
-
-
-def find_or_build(exe):
-    """The kontakt2d program: the one given, or build/kontakt2d (configured and built if needed)."""
-    if exe:
-        return exe
-    build = os.path.join(ROOT, "build")
-    if not os.path.exists(os.path.join(build, "CMakeCache.txt")):
-        subprocess.run(["cmake", "-S", ROOT, "-B", build, "-DCMAKE_BUILD_TYPE=Release"], check=True,
-                       stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "--build", build, "-j", "2", "--target", "kontakt2d"], check=True,
-                   stdout=subprocess.DEVNULL)
-    return os.path.join(build, "kontakt2d")
 
 
 def run_pool(exe, out, cases, jobs, timeout, repeats=REPEATS):
