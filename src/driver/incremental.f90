@@ -329,8 +329,9 @@ contains
          res%reported = .true.
          write (stderr, '(a)') 'kontakt2d: increment '//itoa(res%completed + 1)//' failed: '//status%message
          if (m%results_every > 1) then
-            write (stderr, '(a)') 'kontakt2d: '//itoa(res%completed)//' increment(s) completed; every '// &
-               itoa(m%results_every)//'th of them (OPTIONS RESULTS) is kept in '//res%results_path
+            write (stderr, '(a)') 'kontakt2d: '//itoa(res%completed)//' increment(s) completed; '// &
+               res%results_path//' keeps one in '//itoa(m%results_every)//' (OPTIONS RESULTS), the last '// &
+               'of them increment '//itoa((res%completed/m%results_every)*m%results_every)
          else
             write (stderr, '(a)') 'kontakt2d: '//itoa(res%completed)//' completed increment(s) are kept in '// &
                res%results_path
