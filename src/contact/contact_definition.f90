@@ -287,26 +287,15 @@ contains
       integer, intent(in) :: ielem(:), iedge(:)
       logical, intent(in) :: paired(:)         !! (npoin)
       real(dp), intent(out) :: area(:)         !! (npoin)
-      integer, parameter :: ng = 5
-      real(dp) :: posgp(ng), weigp(ng), shape(3), deriv(3), xy(2, 3), djac, w, share(3), chord
-      integer :: k, nd(3), nn, ig, ie
-      call gauss_legendre(ng, posgp, weigp)
+      real(dp) :: xy(2, 3), share(3), chord
+      integer :: k, nd(3), nn, ie
       area = 0.0_dp
       do k = 1, size(ielem)
          call edge_nodes(m, ielem(k), iedge(k), nd, nn)
          if (.not. all(paired(nd(1:nn)))) cycle
          xy(:, 1:nn) = m%coord(:, nd(1:nn))
          share = 0.0_dp
-         do ig = 1, ng
-            call edge_shape(nn, posgp(ig), shape(1:nn), deriv(1:nn))
-            djac = hypot(dot_product(deriv(1:nn), xy(1, 1:nn)), dot_product(deriv(1:nn), xy(2, 1:nn)))
-            if (m%ntype == NTYPE_AXISYMMETRIC) then
-               w = two_pi*dot_product(shape(1:nn), xy(1, 1:nn))
-            else
-               w = m%mats(m%matno(ielem(k)))%thick
-            end if
-            share(1:nn) = share(1:nn) + shape(1:nn)*w*djac*weigp(ig)
-         end do
+         share(1:nn) = edge_shares(m, ielem(k), xy(:, 1:nn), nn)
          if (m%ntype == NTYPE_AXISYMMETRIC .and. nn == 3) then
             ! edge order: the two end nodes, then the midside node
             chord = norm2(xy(:, 2) - xy(:, 1))
@@ -351,6 +340,31 @@ contains
       end do
    end subroutine node_modulus
 
+   !> Consistent shares of an edge's area, int N_i w |J| dxi (5-point Gauss),
+   !! w = 2 pi r (axisymmetric) or the thickness of element ielem (plane); nn
+   !! nodes in edge order (start, end, mid) with coordinates xy.
+   function edge_shares(m, ielem, xy, nn) result(share)
+      type(model_t), intent(in) :: m
+      integer, intent(in) :: ielem, nn
+      real(dp), intent(in) :: xy(:, :)           !! (2, nn)
+      real(dp) :: share(nn)
+      integer, parameter :: ng = 5
+      real(dp) :: posgp(ng), weigp(ng), shape(3), deriv(3), djac, w
+      integer :: ig
+      call gauss_legendre(ng, posgp, weigp)
+      share = 0.0_dp
+      do ig = 1, ng
+         call edge_shape(nn, posgp(ig), shape(1:nn), deriv(1:nn))
+         djac = hypot(dot_product(deriv(1:nn), xy(1, 1:nn)), dot_product(deriv(1:nn), xy(2, 1:nn)))
+         if (m%ntype == NTYPE_AXISYMMETRIC) then
+            w = two_pi*dot_product(shape(1:nn), xy(1, 1:nn))
+         else
+            w = m%mats(m%matno(ielem))%thick
+         end if
+         share = share + shape(1:nn)*w*djac*weigp(ig)
+      end do
+   end function edge_shares
+
    !> Size of the contact elements at every node of the given edges (only
    !! edges whose nodes are all flagged in `paired`): the shortest adjacent
    !! edge (chord length between its end nodes) and the node's equal share
@@ -363,27 +377,15 @@ contains
       logical, intent(in) :: paired(:)         !! (npoin)
       real(dp), intent(out) :: length(:)       !! (npoin), 0 off the edges
       real(dp), intent(out) :: share(:)        !! (npoin)
-      integer, parameter :: ng = 5
-      real(dp) :: posgp(ng), weigp(ng), shape(3), deriv(3), xy(2, 3), djac, w, ae, le
-      integer :: k, nd(3), nn, ig
-      call gauss_legendre(ng, posgp, weigp)
+      real(dp) :: xy(2, 3), ae, le
+      integer :: k, nd(3), nn
       length = huge(1.0_dp)
       share = 0.0_dp
       do k = 1, size(ielem)
          call edge_nodes(m, ielem(k), iedge(k), nd, nn)
          if (.not. all(paired(nd(1:nn)))) cycle
          xy(:, 1:nn) = m%coord(:, nd(1:nn))
-         ae = 0.0_dp
-         do ig = 1, ng
-            call edge_shape(nn, posgp(ig), shape(1:nn), deriv(1:nn))
-            djac = hypot(dot_product(deriv(1:nn), xy(1, 1:nn)), dot_product(deriv(1:nn), xy(2, 1:nn)))
-            if (m%ntype == NTYPE_AXISYMMETRIC) then
-               w = two_pi*dot_product(shape(1:nn), xy(1, 1:nn))
-            else
-               w = m%mats(m%matno(ielem(k)))%thick
-            end if
-            ae = ae + w*djac*weigp(ig)
-         end do
+         ae = sum(edge_shares(m, ielem(k), xy(:, 1:nn), nn))
          le = norm2(xy(:, 2) - xy(:, 1))
          length(nd(1:nn)) = min(length(nd(1:nn)), le)
          share(nd(1:nn)) = share(nd(1:nn)) + ae/real(nn, dp)
