@@ -184,36 +184,16 @@ contains
       type(model_t), intent(in) :: m
       type(point_load_t), allocatable, intent(inout) :: pl(:)
       integer, intent(inout) :: npl
-      character(len=:), allocatable :: name
       integer :: icase, ks, k
-      real(dp) :: fx, fy
-      logical :: ok
-      character(len=*), parameter :: card = 'LOADS/POINT'
+      real(dp) :: f(2)
 
-      name = group_name(d, ic, card)
-      if (len(name) == 0) return
-      ok = .true.
-      call d%get_real(ic, 31, 40, card, 'FX', fx, ok, default=0.0_dp)
-      call d%get_real(ic, 41, 50, card, 'FY', fy, ok, default=0.0_dp)
-      call d%get_int(ic, 51, 55, card, 'CASE', icase, ok, default=1)
-      call check_tail(d, ic, 56, card, 'GROUP, NAME, FX, FY, CASE in columns 1-55', ok)
-      if (.not. ok) return
-      ks = find_node_set(m, name)
-      if (ks == 0) then
-         call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//name//'" is no node set of the mesh; known: '// &
-                         set_names(m, .false.))
-         return
-      end if
-      if (icase < 1) then
-         call d%error_at(ic, 51, 'E-RANGE', card//': CASE (columns 51-55) expected a load case >= 1, found '// &
-                         itoa(icase))
-         return
-      end if
+      call read_group_load_fields(d, ic, m, 'LOADS/POINT', ['FX', 'FY'], .false., f, icase, ks)
+      if (ks == 0) return
       associate (nodes => m%node_sets(ks)%nodes)
          do k = 1, size(nodes)
             if (npl >= size(pl)) pl = [pl, pl]
             npl = npl + 1
-            pl(npl) = point_load_t(node=nodes(k), force=[fx, fy], icase=icase, line=d%cards(ic)%line)
+            pl(npl) = point_load_t(node=nodes(k), force=f, icase=icase, line=d%cards(ic)%line)
          end do
       end associate
    end subroutine read_group_point_load
@@ -225,31 +205,11 @@ contains
       type(model_t), intent(in) :: m
       type(edge_load_t), allocatable, intent(inout) :: el(:)
       integer, intent(inout) :: nel
-      character(len=:), allocatable :: name
       integer :: icase, ks, k, loc(3), nloc, ie
-      real(dp) :: pn, pt
-      logical :: ok
-      character(len=*), parameter :: card = 'LOADS/EDGE'
+      real(dp) :: p(2)
 
-      name = group_name(d, ic, card)
-      if (len(name) == 0) return
-      ok = .true.
-      call d%get_real(ic, 31, 40, card, 'PN', pn, ok, default=0.0_dp)
-      call d%get_real(ic, 41, 50, card, 'PT', pt, ok, default=0.0_dp)
-      call d%get_int(ic, 51, 55, card, 'CASE', icase, ok, default=1)
-      call check_tail(d, ic, 56, card, 'GROUP, NAME, PN, PT, CASE in columns 1-55', ok)
-      if (.not. ok) return
-      ks = find_edge_set(m, name)
-      if (ks == 0) then
-         call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//name//'" is no edge set (physical curve) of '// &
-                         'the mesh; known: '//set_names(m, .true.))
-         return
-      end if
-      if (icase < 1) then
-         call d%error_at(ic, 51, 'E-RANGE', card//': CASE (columns 51-55) expected a load case >= 1, found '// &
-                         itoa(icase))
-         return
-      end if
+      call read_group_load_fields(d, ic, m, 'LOADS/EDGE', ['PN', 'PT'], .true., p, icase, ks)
+      if (ks == 0) return
       associate (s => m%edge_sets(ks))
          do k = 1, size(s%ielem)
             ie = s%ielem(k)
@@ -260,11 +220,55 @@ contains
             el(nel)%ielem = ie
             el(nel)%nn = nloc
             el(nel)%nodes(1:nloc) = m%lnods(loc(1:nloc), ie)
-            el(nel)%pn(1:nloc) = pn
-            el(nel)%pt(1:nloc) = pt
+            el(nel)%pn(1:nloc) = p(1)
+            el(nel)%pt(1:nloc) = p(2)
             el(nel)%icase = icase
             el(nel)%line = d%cards(ic)%line
          end do
       end associate
    end subroutine read_group_edge_load
+
+   !> The fields the LOADS GROUP cards share: the set's name, two values
+   !! (columns 31-40 and 41-50, default 0), CASE (51-55, default 1) and nothing
+   !! beyond; the set must exist (a node set, or with edges an edge set) and
+   !! CASE be >= 1.  ks: the set's index, 0 when the card is in error
+   !! (reported).
+   subroutine read_group_load_fields(d, ic, m, card, names, edges, v, icase, ks)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(model_t), intent(in) :: m
+      character(len=*), intent(in) :: card, names(2)
+      logical, intent(in) :: edges
+      real(dp), intent(out) :: v(2)
+      integer, intent(out) :: icase, ks
+      character(len=:), allocatable :: name
+      logical :: ok
+
+      ks = 0
+      v = 0.0_dp
+      icase = 1
+      name = group_name(d, ic, card)
+      if (len(name) == 0) return
+      ok = .true.
+      call d%get_real(ic, 31, 40, card, names(1), v(1), ok, default=0.0_dp)
+      call d%get_real(ic, 41, 50, card, names(2), v(2), ok, default=0.0_dp)
+      call d%get_int(ic, 51, 55, card, 'CASE', icase, ok, default=1)
+      call check_tail(d, ic, 56, card, 'GROUP, NAME, '//names(1)//', '//names(2)//', CASE in columns 1-55', ok)
+      if (.not. ok) return
+      if (edges) then
+         ks = find_edge_set(m, name)
+         if (ks == 0) call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//name//'" is no edge set (physical '// &
+                                      'curve) of the mesh; known: '//set_names(m, .true.))
+      else
+         ks = find_node_set(m, name)
+         if (ks == 0) call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//name//'" is no node set of the mesh; '// &
+                                      'known: '//set_names(m, .false.))
+      end if
+      if (ks == 0) return
+      if (icase < 1) then
+         call d%error_at(ic, 51, 'E-RANGE', card//': CASE (columns 51-55) expected a load case >= 1, found '// &
+                         itoa(icase))
+         ks = 0
+      end if
+   end subroutine read_group_load_fields
 end module group_cards
