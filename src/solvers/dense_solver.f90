@@ -324,22 +324,7 @@ contains
       integer :: info
       character(len=120) :: buf
 
-      select case (this%state)
-      case (ST_FACTORED)
-      case (ST_FAILED)
-         call status%set(STAT_SOLVER, 'dense solver: no valid factorization to solve with ('// &
-                         this%fail_msg//')')
-         return
-      case default
-         call status%set(STAT_SOLVER, 'dense solver: solve called before factorize')
-         return
-      end select
-      if (size(b) /= this%neq) then
-         write (buf, '(a,i0,a,i0)') 'dense solver: right-hand side has ', size(b), &
-            ' entries, expected ', this%neq
-         call status%set(STAT_SOLVER, trim(buf))
-         return
-      end if
+      if (.not. this%ready_to_solve(size(b), status)) return
       if (this%neq == 0) return
       call dpotrs('U', this%neq, 1, this%f, this%neq, b, this%neq, info)
       if (info /= 0) then

@@ -19,7 +19,8 @@
 !! symbolic work is done once.  The driver never knows which solver it holds.
 module linear_solver
    use kinds, only: dp, i8
-   use errors, only: status_t, fatal_internal
+   use errors, only: status_t, fatal_internal, STAT_SOLVER
+   use strings, only: itoa
    implicit none
    private
 
@@ -68,6 +69,7 @@ module linear_solver
       procedure :: failed_equation
       procedure :: reset_common
       procedure :: check_element
+      procedure :: ready_to_solve
    end type linear_solver_t
 
    abstract interface
@@ -150,4 +152,29 @@ contains
       if (size(ke, 1) /= size(ieq) .or. size(ke, 2) /= size(ieq)) call fatal_internal( &
          this%name()//' solver: element matrix and equation list differ in size', file, line)
    end subroutine check_element
+
+   !> Can `solve` go ahead with a right-hand side of nb entries?  Otherwise
+   !! the status says why (no valid factorization, or the wrong length).
+   logical function ready_to_solve(this, nb, status) result(ok)
+      class(linear_solver_t), intent(in) :: this
+      integer, intent(in) :: nb
+      type(status_t), intent(inout) :: status
+      ok = .false.
+      select case (this%state)
+      case (ST_FACTORED)
+      case (ST_FAILED)
+         call status%set(STAT_SOLVER, this%name()//' solver: no valid factorization to solve with ('// &
+                         this%fail_msg//')')
+         return
+      case default
+         call status%set(STAT_SOLVER, this%name()//' solver: solve called before factorize')
+         return
+      end select
+      if (nb /= this%neq) then
+         call status%set(STAT_SOLVER, this%name()//' solver: right-hand side has '//itoa(nb)// &
+                         ' entries, expected '//itoa(this%neq))
+         return
+      end if
+      ok = .true.
+   end function ready_to_solve
 end module linear_solver

@@ -409,25 +409,8 @@ contains
       class(skyline_solver_t), intent(inout) :: this
       real(dp), intent(inout) :: b(:)          !! (neq) right-hand side in, solution out
       type(status_t), intent(inout) :: status  !! set only on failure
-      character(len=120) :: buf
 
-      select case (this%state)
-      case (ST_FACTORED)
-      case (ST_FAILED)
-         call status%set(STAT_SOLVER, 'skyline solver: no valid factorization to solve with ('// &
-                         this%fail_msg//')')
-         return
-      case default
-         call status%set(STAT_SOLVER, 'skyline solver: solve called before factorize')
-         return
-      end select
-      if (size(b) /= this%neq) then
-         write (buf, '(a,i0,a,i0)') 'skyline solver: right-hand side has ', size(b), &
-            ' entries, expected ', this%neq
-         call status%set(STAT_SOLVER, trim(buf))
-         return
-      end if
-
+      if (.not. this%ready_to_solve(size(b), status)) return
       call ldlt_solve(this%neq, this%a, this%top, this%jdiag, b)
       this%stats%solves = this%stats%solves + 1
    end subroutine skyline_solve

@@ -488,21 +488,7 @@ contains
       real(c_double), allocatable :: x(:), bc(:)
       integer(c_int) :: st
 
-      select case (this%state)
-      case (ST_FACTORED)
-      case (ST_FAILED)
-         call status%set(STAT_SOLVER, 'umfpack solver: no valid factorization to solve with ('// &
-                         this%fail_msg//')')
-         return
-      case default
-         call status%set(STAT_SOLVER, 'umfpack solver: solve called before factorize')
-         return
-      end select
-      if (size(b) /= this%neq) then
-         call status%set(STAT_SOLVER, 'umfpack solver: right-hand side has '//itoa(size(b))// &
-                         ' entries, expected '//itoa(this%neq))
-         return
-      end if
+      if (.not. this%ready_to_solve(size(b), status)) return
       if (this%neq == 0) then
          this%stats%solves = this%stats%solves + 1
          return
