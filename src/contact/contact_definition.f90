@@ -40,6 +40,7 @@ module contact_definition
    use kinds, only: dp, two_pi
    use errors, only: error_list_t
    use strings, only: itoa, rtoa
+   use sorting, only: insertion_sort
    use model, only: model_t, find_edge_set, find_node_set, NTYPE_AXISYMMETRIC
    use contact_types, only: contact_pair_t, interface_t, rigid_body_t, LAW_ROUGH, LAW_IDEAL, &
                             PAIR_NODE, PAIR_SEGMENT, PAIR_RIGID, MATCH_SEGMENT, RIGID_CIRCLE, MAX_PAIR_NODES
@@ -971,22 +972,6 @@ contains
          ok = .true.
       end function projected_pairs
 
-      pure subroutine sort_reals(v)
-         real(dp), intent(inout) :: v(:)
-         integer :: q1, q2
-         real(dp) :: t
-         do q1 = 2, size(v)
-            t = v(q1)
-            q2 = q1 - 1
-            do while (q2 >= 1)
-               if (v(q2) <= t) exit
-               v(q2 + 1) = v(q2)
-               q2 = q2 - 1
-            end do
-            v(q2 + 1) = t
-         end do
-      end subroutine sort_reals
-
       subroutine unmatched(a)
          integer, intent(in) :: a
          nbad = nbad + 1
@@ -1039,7 +1024,7 @@ contains
                      brk = [brk, xi]
                   end do
                end do
-               call sort_reals(brk)
+               call insertion_sort(brk)
                do ib = 1, size(brk) - 1
                   do ig = 1, ng
                      sg = 0.5_dp*(brk(ib) + brk(ib + 1)) + 0.5_dp*(brk(ib + 1) - brk(ib))*posgp(ig)

@@ -5,6 +5,7 @@
 module graph
    use model, only: model_t
    use dof_map, only: dof_map_t
+   use sorting, only: insertion_sort
    implicit none
    private
    public :: build_node_graph, build_equation_graph
@@ -70,7 +71,7 @@ contains
          n = 0
          pos = xadj(ip)
          call visit(ip, .true.)
-         call isort(adjncy(xadj(ip):xadj(ip + 1) - 1))
+         call insertion_sort(adjncy(xadj(ip):xadj(ip + 1) - 1))
       end do
    contains
       subroutine visit(node, fill)
@@ -151,7 +152,7 @@ contains
                end do
             end do
             xadj(ieq + 1) = xadj(ieq) + n
-            if (pass == 2) call isort(adjncy(xadj(ieq):xadj(ieq + 1) - 1))
+            if (pass == 2) call insertion_sort(adjncy(xadj(ieq):xadj(ieq + 1) - 1))
          end do
          if (pass == 1) then
             deallocate (adjncy)
@@ -172,20 +173,4 @@ contains
          ptr(i + 1) = ptr(i) + counts(i)
       end do
    end subroutine counts_to_ptr
-
-   !> Insertion sort of a short integer list.
-   pure subroutine isort(a)
-      integer, intent(inout) :: a(:)
-      integer :: i, j, v
-      do i = 2, size(a)
-         v = a(i)
-         j = i - 1
-         do while (j >= 1)
-            if (a(j) <= v) exit
-            a(j + 1) = a(j)
-            j = j - 1
-         end do
-         a(j + 1) = v
-      end do
-   end subroutine isort
 end module graph

@@ -36,6 +36,7 @@ module umfpack_solver
    use kinds, only: dp, i8
    use errors, only: status_t, fatal_internal, STAT_SINGULAR, STAT_SOLVER
    use strings, only: itoa, rtoa
+   use sorting, only: insertion_sort
    use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
    use umfpack_c
    implicit none
@@ -171,7 +172,7 @@ contains
       last = 0
       do j = 1, neq
          k = this%ap(j - 1) + 1
-         call sort_int(this%ai(k:this%ap(j)))
+         call insertion_sort(this%ai(k:this%ap(j)))
          do p = k, this%ap(j)
             if (p > k) then
                if (this%ai(p) == this%ai(p - 1)) cycle
@@ -589,21 +590,4 @@ contains
          s = 'unknown UMFPACK status '//itoa(int(st))
       end select
    end function umfpack_status_text
-
-   !> Insertion sort (columns of a FE matrix are short).
-   pure subroutine sort_int(a)
-      integer(c_int), intent(inout) :: a(:)
-      integer :: i, j
-      integer(c_int) :: v
-      do i = 2, size(a)
-         v = a(i)
-         j = i - 1
-         do while (j >= 1)
-            if (a(j) <= v) exit
-            a(j + 1) = a(j)
-            j = j - 1
-         end do
-         a(j + 1) = v
-      end do
-   end subroutine sort_int
 end module umfpack_solver
