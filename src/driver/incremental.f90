@@ -531,7 +531,7 @@ contains
       logical, allocatable :: changed(:)
       integer :: ip, idof, ic, j, iter, maxit, k
       real(dp) :: fscale, dnorm
-      logical :: need_matrix, done
+      logical :: need_matrix, done, again
 
       allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%nd, an%npair), rpred(an%nd, an%npair), changed(an%npair))
       rvec = 0.0_dp
@@ -637,17 +637,11 @@ contains
             k = 2*m%contact%pairs(j)%nn
             rpred(1:k, j) = rvec(1:k, j) + matmul(an%kstore(1:k, 1:k, j), pair_values(ddu, m%contact%pairs(j), k))
          end do
-         ! ... against the actual ones, after the mode checks
-         call evaluate_pairs(m%contact, st, att%du, changed, first)
-         call residual_forces()
          dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/max(maxval(abs(att%du)), tiny(1.0_dp))
          ddu = 0.0_dp
-         att%changing = any(changed)
-         if (att%changing) then
-            att%repeats = att%repeats + 1
-            need_matrix = .true.
-            cycle
-         end if
+         ! ... against the actual ones, after the mode checks
+         call update_modes(again)
+         if (again) cycle
          if (att%rnorm <= m%contact%opts%tol_residual .and. &
              (.not. an%returning .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
             if (.not. st%has_ideal) then
@@ -663,14 +657,8 @@ contains
                att%converged = .true.
                exit
             end if
-            call evaluate_pairs(m%contact, st, att%du, changed, first)
-            call residual_forces()
-            att%changing = any(changed)
-            if (att%changing) then
-               att%repeats = att%repeats + 1
-               need_matrix = .true.
-               cycle
-            end if
+            call update_modes(again)
+            if (again) cycle
          end if
          need_matrix = an%returning .and. .not. an%modified
       end do
@@ -690,6 +678,21 @@ contains
          end do
       end if
    contains
+      !> Modes and forces of the pairs for the current displacements, and the
+      !! out-of-balance force; again: some mode changed, so the increment is
+      !! repeated with a new matrix.
+      subroutine update_modes(again)
+         logical, intent(out) :: again
+         call evaluate_pairs(m%contact, st, att%du, changed, first)
+         call residual_forces()
+         att%changing = any(changed)
+         again = att%changing
+         if (again) then
+            att%repeats = att%repeats + 1
+            need_matrix = .true.
+         end if
+      end subroutine update_modes
+
       !> Internal-force vectors of the pairs for their current forces, and the
       !! out-of-balance force: the forces the solve predicted minus these.
       subroutine residual_forces()
