@@ -19,7 +19,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from k2d_deck import Deck, f10, graded  # noqa: E402
+from k2d.deck import Deck, f10, graded  # noqa: E402
 
 ROOT = os.path.dirname(HERE)
 KGF = 10.19716          # kgf/cm2 per N/mm2 (SPEC §1)
@@ -584,7 +584,7 @@ def write_variants(outdir, names=None):
 def punch_graded(path, factor=0.25, radius=25.0, **kw):
     """punch() with the mesh graded towards the corner of the punch, (x, y) = (50, 0): the
     elements there shrink smoothly to `factor` times their size, the nodes within `radius`
-    mm of the corner move towards it, those beyond stay (k2d_deck.Deck.grade_towards).  The
+    mm of the corner move towards it, those beyond stay (k2d.deck.Deck.grade_towards).  The
     pressure and u_T peak at the corner and converge slowest with a uniform refinement
     (docs/accuracy-and-stability.md, the cost study)."""
     d = punch(path, **kw)

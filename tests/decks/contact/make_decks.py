@@ -7,7 +7,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "tools"))
-from k2d_deck import Deck, graded  # noqa: E402
+from k2d.deck import Deck, graded  # noqa: E402
 
 
 def block_on_base(title, ntype=1, nnode=4, xs=None, nya=4, W=10.0, H=10.0, E=1000.0, nu=0.0,

@@ -16,7 +16,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "tools"))
-from k2d_deck import Deck, fine_then_graded, f10  # noqa: E402
+from k2d.deck import Deck, fine_then_graded, f10  # noqa: E402
 
 E_STEEL10 = 21000.0     # the paper's example 5.2 (1/10 of steel)
 NU = 0.3

@@ -6,7 +6,7 @@ A small library used by the scripts that generate the example and test decks
 on grid lines; nodes are shared inside a body, never between bodies, so two
 bodies that touch get coincident node pairs for the contact surfaces.
 
-    from k2d_deck import Deck
+    from k2d.deck import Deck
     d = Deck("title", ntype=1, nnode=4)
     a = d.block("A", xs=[0, 5, 10], ys=[0, 5, 10], mat=1)
     ...
