@@ -1,0 +1,160 @@
+"""The one Python reader of Kontakt2D's result file (docs/results-format.md).
+
+No other Python file of the project knows the HDF5 group, dataset or attribute
+names: scripts and tests read results through this module.
+
+    from k2d.results import Result
+    r = Result("punch_5_1.h5")
+    r.status, r.completed            # 'completed', increments_completed
+    r.attrs["analysis_type"]         # root attributes (strings decoded)
+    r.mesh.coordinates               # (npoin, 2); also connectivity, element_nodes, material, ...
+    r.contact is None                # a deck without contact
+    r.contact.position, r.contact.area, r.contact.normal      # the contact definition
+    r.contact.interfaces[0]["law"]   # each interface's attributes
+    for s in r.steps:                # the increment groups, in the order of their numbers
+        s.number, s.load_factor, s.attrs["iterations"]
+        s.field("displacement")      # (npoin, 2); stress_nodal, stress_gauss, reaction
+        s.contact("pressure")        # (npair); closure, slip, normal_state, ...
+    r.step(12)                       # the group of increment 12 (KeyError if not kept)
+    r.last                           # the last kept increment
+    r.history("law_drift")           # an increment attribute over r.steps (NaN where absent)
+
+Per-increment datasets are read when asked for (a result file may hold
+hundreds of increments); the file is opened for each read and closed again,
+so a Result can be kept while the program writes more.
+"""
+import h5py
+import numpy as np
+
+
+def _text(v):
+    """An attribute value as Python: strings decoded, 1-element arrays kept as arrays."""
+    if isinstance(v, bytes):
+        return v.decode()
+    if isinstance(v, np.ndarray) and v.dtype.kind in "SO":
+        return [x.decode() if isinstance(x, bytes) else str(x) for x in v.ravel()]
+    if isinstance(v, np.generic):
+        return v.item()
+    return v
+
+
+def _attrs(obj):
+    return {k: _text(v) for k, v in obj.attrs.items()}
+
+
+class _Namespace:
+    """Datasets of one group as attributes (arrays read at once)."""
+
+    def __init__(self, group):
+        self.names = sorted(k for k in group.keys() if isinstance(group[k], h5py.Dataset))
+        for k in self.names:
+            setattr(self, k, group[k][()])
+        self.attrs = _attrs(group)
+
+    def __contains__(self, name):
+        return name in self.names
+
+
+class ContactDefinition(_Namespace):
+    """The `/contact` group: one entry per pair, plus the interfaces' laws."""
+
+    def __init__(self, group):
+        super().__init__(group)
+        self.interfaces = []
+        k = 1
+        while "interface_%d" % k in group:
+            g = group["interface_%d" % k]
+            d = _attrs(g)
+            for name in g.keys():
+                d[name] = g[name][()]
+            self.interfaces.append(d)
+            k += 1
+
+    @property
+    def npair(self):
+        return len(self.node_a)
+
+
+class Step:
+    """One increment group of the file."""
+
+    def __init__(self, result, name, attrs):
+        self._result = result
+        self.name = name
+        self.attrs = attrs
+        self.number = int(attrs.get("increment", int(name)))
+        self.load_factor = np.atleast_1d(np.asarray(attrs["load_factor"], dtype=float))
+
+    def _read(self, sub, name):
+        with h5py.File(self._result.path, "r") as f:
+            g = f["increments"][self.name]
+            if sub:
+                if sub not in g:
+                    raise KeyError("increment %d has no %s results" % (self.number, sub))
+                g = g[sub]
+            if name not in g:
+                raise KeyError("increment %d has no dataset %r" % (self.number, name))
+            return g[name][()]
+
+    def field(self, name):
+        """A nodal or Gauss-point field: displacement, stress_nodal, stress_gauss, reaction."""
+        return self._read(None, name)
+
+    def contact(self, name):
+        """A contact quantity per pair: pressure, shear, force_normal, closure, slip, ..."""
+        return self._read("contact", name)
+
+    def contact_all(self):
+        """Every contact dataset of the increment, as a dict."""
+        with h5py.File(self._result.path, "r") as f:
+            g = f["increments"][self.name]
+            if "contact" not in g:
+                return {}
+            return {k: v[()] for k, v in g["contact"].items()}
+
+    def __repr__(self):
+        return "<Step %d of %s>" % (self.number, self._result.path)
+
+
+class Result:
+    """The documented contents of one result file."""
+
+    def __init__(self, path):
+        self.path = str(path)
+        with h5py.File(self.path, "r") as f:
+            self.attrs = _attrs(f)
+            self.mesh = _Namespace(f["mesh"]) if "mesh" in f else None
+            self.contact = ContactDefinition(f["contact"]) if "contact" in f else None
+            names = sorted(f["increments"].keys()) if "increments" in f else []
+            self.steps = [Step(self, k, _attrs(f["increments"][k])) for k in names]
+        self._by_number = {s.number: s for s in self.steps}
+
+    @property
+    def status(self):
+        return str(self.attrs.get("status", ""))
+
+    @property
+    def completed(self):
+        return int(self.attrs.get("increments_completed", 0))
+
+    @property
+    def version(self):
+        return str(self.attrs.get("version", ""))
+
+    @property
+    def last(self):
+        if not self.steps:
+            raise KeyError("%s holds no increment" % self.path)
+        return self.steps[-1]
+
+    def step(self, number):
+        return self._by_number[int(number)]
+
+    def history(self, attr):
+        """An increment attribute over the kept increments (NaN where absent)."""
+        return np.array([float(np.atleast_1d(s.attrs[attr])[0]) if attr in s.attrs else np.nan
+                         for s in self.steps])
+
+    def load_factors(self):
+        """(nsteps, ncase) load factors of the kept increments."""
+        return np.array([s.load_factor for s in self.steps]).reshape(len(self.steps), -1)
