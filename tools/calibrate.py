@@ -13,7 +13,8 @@ order they were measured (lines starting with # are comments):
 
 The report gives the constants with 95 % confidence intervals, the residuals in the data's
 units, warnings where the data does not determine a constant, and the cards, each on a line of
-its own, in the deck's columns.  A plot per fit goes to --out (default: the current folder).
+its own, in the deck's columns.  A plot per fit goes to --out (default: the current folder),
+named after the data file (DATA.png).
 With --replay the cards are run through Kontakt2D on a uniform block that replays the measured
 history, and the computed closures (tractions) are compared with the data and plotted.
 docs/calibration.md has a worked example.  Exit code 2: the data file cannot be used (the
@@ -106,7 +107,7 @@ def main(argv=None):
     if not args.no_plot:
         from k2d import calibration_plots as plots
         os.makedirs(args.out, exist_ok=True)
-        path = os.path.join(args.out, "%s_%s.png" % (stem, args.law))
+        path = os.path.join(args.out, "%s.png" % stem)
         if args.law == "normal":
             plots.plot_normal(fit, path, replay)
         elif args.law == "tangent":

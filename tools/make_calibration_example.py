@@ -64,7 +64,7 @@ def main():
                                  "--out", work] + extra)
             if rc != 0:
                 return rc
-            shutil.copy(os.path.join(work, "joint_%s_%s.png" % (law, law)),
+            shutil.copy(os.path.join(work, "joint_%s.png" % law),
                         os.path.join(ROOT, "docs", "figures", "calibration_%s.png" % law))
             print()
     finally:
