@@ -166,7 +166,7 @@ def read_table(path, spec):
     skipped; the first other line is the header.  Raises DataError."""
     t = Table(path)
     try:
-        with open(path, newline="", encoding="utf-8") as f:
+        with open(path, newline="", encoding="utf-8-sig") as f:      # a spreadsheet's BOM is no column
             raw = f.read().splitlines()
     except OSError as e:
         raise DataError(path, 0, "cannot read the file: %s" % e.strerror)

@@ -124,7 +124,8 @@ def replay_normal(fit, workdir, exe=None, floor=0.01, name="replay_normal"):
         rp.computed[k] = float(np.mean(clo))
         rp.pressure[k] = float(np.mean(pr))
     clipped = set(rp.clipped)
-    rp.rows = [k for k in range(len(t)) if k not in clipped and np.isfinite(rp.computed[k])]
+    # compared: the rows the fit used (with --loading-only the loading curve) that were replayed as measured
+    rp.rows = [k for k in range(len(t)) if fit.fitted[k] and k not in clipped and np.isfinite(rp.computed[k])]
     u = t.values["u"]
     rp.scale = float(np.max(np.abs(u)))
     err = rp.computed[rp.rows] - u[rp.rows]
