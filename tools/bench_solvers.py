@@ -19,7 +19,6 @@ Not a test: a run takes about 10 to 20 minutes on 2 cores.
 """
 import argparse
 import csv
-import math
 import os
 import subprocess
 import sys
@@ -30,7 +29,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+from k2d.build import build_target  # noqa: E402
+
 FIELDS = ["solver", "renumber", "nx", "grade", "neq", "nnz_factor", "analyse_s", "assembly_s",
           "factorize_s", "solve_s", "peak_rss_mb", "solver_mb", "max_u"]
 # (solver, renumber, grade, label)
@@ -44,12 +47,8 @@ QUICK = [22, 45, 90]
 
 
 def build(build_dir):
-    if not os.path.exists(os.path.join(build_dir, "CMakeCache.txt")):
-        subprocess.run(["cmake", "-S", ROOT, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release"],
-                       check=True, stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "--build", build_dir, "--target", "bench_solvers", "-j", "2"],
-                   check=True, stdout=subprocess.DEVNULL)
-    return os.path.join(build_dir, "bench_solvers")
+    """The bench_solvers program of a Release build in build_dir (configured and built if needed)."""
+    return os.path.join(build_target("bench_solvers", build_dir, jobs=2), "bench_solvers")
 
 
 def fit(n, t):

@@ -11,62 +11,19 @@ reference:
 * the coarse punch of the paper's example 5.1 (tests/decks/stability/
   s2_first_increment_large.dat, Coulomb friction 0.2): a Newton run with 160 increments.
 
-Writes increment_study.csv and increment_study.png into the output folder.
+Writes increment_study.csv and increment_study.png into the output folder.  The study is the
+package module k2d.increment_study (reading through k2d.results); this is its command line.
 
     tools/increment_study.py [--exe build/kontakt2d] [--out results/increment_study]
 """
 import argparse
-import csv
 import os
-import re
-import subprocess
 import sys
-import time
 
-import h5py
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CASES = {
-    "V1 normal patch test": os.path.join(ROOT, "tests", "decks", "contact", "v1_plane_q4.dat"),
-    "punch, example 5.1 (coarse)": os.path.join(ROOT, "tests", "decks", "stability", "s2_first_increment_large.dat"),
-}
-COUNTS = [2, 3, 5, 10, 20, 40, 80]
-SCHEMES = ["INCREMENTAL", "INCREMENTAL+ITERATE", "NEWTON"]
-KGF = 1.0 / 0.0980665
-
-
-def make_deck(base, n, scheme, path):
-    """The base deck with N increments (5 % first) and the given scheme."""
-    text = open(base).read()
-    incs = "INCREMENTS\n    1      0.05\n%5d       1.0\nEND\n" % (n - 1) if n > 1 else "INCREMENTS\n    1       1.0\nEND\n"
-    text = re.sub(r"INCREMENTS\n.*?END\n", incs, text, flags=re.S)
-    first = "ITERATE" if scheme.endswith("+ITERATE") else "SECANT"
-    scheme = scheme.split("+")[0]
-    text = re.sub(r"^(SCHEME|UPDATE|FIRSTINC) .*\n", "", text, flags=re.M)
-    text = text.replace("CONTACT\n", "CONTACT\nSCHEME    " + scheme + "\nFIRSTINC  " + first + "\n", 1)
-    text = text.replace("REPEATS ", "#REPEATS ")
-    with open(path, "w") as f:
-        f.write(text)
-
-
-def run(exe, deck, out):
-    t0 = time.perf_counter()
-    r = subprocess.run([exe, deck, "-q", "-o", out], capture_output=True, text=True)
-    dt = time.perf_counter() - t0
-    if r.returncode != 0:
-        return None, dt, r.stderr.strip()
-    with h5py.File(out, "r") as f:
-        incs = f["increments"]
-        last = incs[sorted(incs)[-1]]
-        c = last["contact"]
-        res = {"pressure": c["pressure"][...], "closure": c["closure"][...],
-               "solutions": int(sum(incs[k].attrs["iterations"] for k in incs))}
-    return res, dt, r.stderr.strip()
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+from k2d import increment_study as st  # noqa: E402
 
 
 def main(argv=None):
@@ -79,59 +36,14 @@ def main(argv=None):
     os.makedirs(args.out, exist_ok=True)
     work = os.path.join(args.out, "work")
     os.makedirs(work, exist_ok=True)
-
-    rows = []
-    for case, base in CASES.items():
-        tag = "v1" if case.startswith("V1") else "punch"
-        if tag == "v1":
-            reference = None
-        else:
-            deck = os.path.join(work, "punch_reference.dat")
-            make_deck(base, 160, "NEWTON", deck)
-            ref, _, err = run(args.exe, deck, deck[:-4] + ".h5")
-            if ref is None:
-                sys.exit("reference run failed: " + err)
-            reference = ref["pressure"]
-        for scheme in SCHEMES:
-            for n in COUNTS:
-                deck = os.path.join(work, f"{tag}_{scheme.lower().replace('+', '_')}_{n}.dat")
-                make_deck(base, n, scheme, deck)
-                res, dt, err = run(args.exe, deck, deck[:-4] + ".h5")
-                if res is None:
-                    rows.append([case, scheme, n, float("nan"), float("nan"), 0, round(dt, 3), "failed: " + err[:120]])
-                    continue
-                if reference is None:
-                    uexact = 1e-3 * KGF ** 0.5          # c_n = 1 um/(kgf/cm2)^0.5, m = 0.5, p0 = 1 N/mm2
-                    error = abs(res["closure"].max() / uexact - 1.0)
-                    perr = abs(res["pressure"].max() - 1.0)
-                else:
-                    error = float(np.max(np.abs(res["pressure"] - reference) / reference))
-                    perr = error
-                rows.append([case, scheme, n, error, perr, res["solutions"], round(dt, 3), ""])
-                print(f"{case:30s} {scheme:12s} N={n:4d}  error {error:9.3e}  solutions {res['solutions']:4d}")
-
+    try:
+        rows = st.measure(args.exe, work)
+    except RuntimeError as e:
+        sys.exit(str(e))
     csv_path = os.path.join(args.out, "increment_study.csv")
-    with open(csv_path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["case", "scheme", "increments", "error", "pressure_error", "solutions", "wall_s", "note"])
-        w.writerows(rows)
-
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
-    for ax, case in zip(axes, CASES):
-        for scheme, marker in zip(SCHEMES, ["o-", "^-", "s-"]):
-            sel = [r for r in rows if r[0] == case and r[1] == scheme and r[3] == r[3]]
-            n = [r[2] for r in sel]
-            e = [max(r[3], 1e-12) for r in sel]
-            ax.loglog(n, e, marker, label=scheme.lower())
-        ax.loglog(COUNTS, [0.5 / c for c in COUNTS], "k:", lw=0.8, label="1/N")
-        ax.set_xlabel("increments N (5 % first)")
-        ax.set_ylabel("closure error" if case.startswith("V1") else "max pressure error vs reference")
-        ax.set_title(case, fontsize=10)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
+    st.write_csv(csv_path, rows)
     png = os.path.join(args.out, "increment_study.png")
-    fig.savefig(png, dpi=90)
+    st.chart(rows, png)
     print(f"table: {csv_path}\nchart: {png}")
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plot a Kontakt2D result file: deformed mesh coloured by a stress measure.
 
-Reads only what docs/results-format.md documents.
+The drawing is k2d.plot (reading through k2d.results); this is its command line.
 
     tools/plot_results.py RESULTS.h5 [-o PLOT.png] [--increment N]
                           [--component mises|xx|yy|xy|zz] [--scale S] [--zoom auto|none]
@@ -11,53 +11,13 @@ second panel shows the contact pressure and shear along the contact surface
 (slipping pairs marked), and the mesh panel zooms on a contact zone that is
 small against the model (--zoom none shows the whole model).
 """
+
 import argparse
+import os
 import sys
 
-import h5py
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.tri as mtri  # noqa: E402
-import numpy as np  # noqa: E402
-
-COMPONENTS = {"xx": 0, "yy": 1, "xy": 2, "zz": 3}
-
-
-def von_mises(s):
-    """Von Mises stress of (xx, yy, xy, zz) rows."""
-    sxx, syy, sxy, szz = s[:, 0], s[:, 1], s[:, 2], s[:, 3]
-    return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxy ** 2)
-
-
-def triangles(conn, nnode):
-    """Split every element into triangles over its corner nodes (0-based)."""
-    tris = []
-    for e, n in zip(conn, nnode):
-        c = e[:3] if n == 3 else e[:4]
-        c = c - 1
-        if len(c) == 3:
-            tris.append(c)
-        else:
-            tris.append([c[0], c[1], c[2]])
-            tris.append([c[0], c[2], c[3]])
-    return np.array(tris)
-
-
-def outline(conn, nnode):
-    """Element boundary polylines through corner and midside nodes (0-based)."""
-    lines = []
-    for e, n in zip(conn, nnode):
-        e = e - 1
-        if n == 3:
-            ring = [e[0], e[1], e[2]]
-        elif n == 4:
-            ring = [e[0], e[1], e[2], e[3]]
-        else:
-            ring = [e[0], e[4], e[1], e[5], e[2], e[6], e[3], e[7]]
-        lines.append(ring + [ring[0]])
-    return lines
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from k2d.plot import COMPONENTS, plot_result  # noqa: E402
 
 
 def main(argv=None):
@@ -70,120 +30,10 @@ def main(argv=None):
     ap.add_argument("--zoom", default="auto", choices=["auto", "none"],
                     help="auto: show the mesh around a contact zone that is small against the model")
     args = ap.parse_args(argv)
-
-    with h5py.File(args.results, "r") as f:
-        incs = sorted(f["increments"].keys())
-        if not incs:
-            sys.exit(f"{args.results}: no completed increment to plot")
-        key = incs[-1] if args.increment == 0 else "%05d" % args.increment
-        if key not in f["increments"]:
-            sys.exit(f"{args.results}: no increment {args.increment} (have {incs[0]}..{incs[-1]})")
-        g = f["increments"][key]
-        xy = f["mesh/coordinates"][...]
-        conn = f["mesh/connectivity"][...]
-        nnode = f["mesh/element_nodes"][...]
-        u = g["displacement"][...]
-        s = g["stress_nodal"][...]
-        lam = g.attrs["load_factor"]
-        title = f.attrs["title"]
-        title = title.decode() if isinstance(title, bytes) else str(title)
-        ntype = int(f.attrs["ntype"])
-        contact = None
-        if "contact" in g and "contact" in f:
-            c = g["contact"]
-            contact = {k: c[k][...] for k in c.keys()}
-            # the pair definition (positions, areas) is written once, in /contact
-            for k in ("position", "area", "node_a", "node_b"):
-                contact[k] = f["contact"][k][...]
-
-    size = max(np.ptp(xy[:, 0]), np.ptp(xy[:, 1]))
-    window = None
-    if contact is not None and args.zoom == "auto":
-        # a contact zone small against the model: show the mesh around it
-        closed = contact["normal_state"] > 0
-        pts = contact["position"][closed] if closed.any() else contact["position"]
-        ext = max(np.ptp(pts[:, 0]), np.ptp(pts[:, 1]), 1e-12)
-        if ext < 0.1 * size:
-            c = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
-            half = 1.5 * ext
-            window = (max(c[0] - half, xy[:, 0].min()), min(c[0] + half, xy[:, 0].max()),
-                      max(c[1] - half, xy[:, 1].min()), min(c[1] + half, xy[:, 1].max()))
-    if window is not None:
-        inside = ((xy[:, 0] >= window[0]) & (xy[:, 0] <= window[1]) & (xy[:, 1] >= window[2]) & (xy[:, 1] <= window[3]))
-        umax = np.abs(u[inside]).max() if inside.any() else np.abs(u).max()
-        span = window[1] - window[0]
-    else:
-        umax = np.abs(u).max()
-        span = size
-    scale = args.scale if args.scale is not None else (0.05 * span / umax if umax > 0 else 1.0)
-    values = von_mises(s) if args.component == "mises" else s[:, COMPONENTS[args.component]]
-    label = {"mises": "von Mises stress", "xx": "stress xx (rr)", "yy": "stress yy (zz)",
-             "xy": "shear stress xy", "zz": "stress zz (hoop)"}[args.component]
-
-    npanel = 2 if contact is not None else 1
-    fig, axes = plt.subplots(1, npanel, figsize=(7 * npanel, 6), squeeze=False)
-    ax = axes[0, 0]
-    d = xy + scale * u
-    tris = triangles(conn, nnode)
-    rings = outline(conn, nnode)
-    if window is not None:
-        # only the elements near the window (drawing is clipped to it anyway)
-        pad = 0.5 * (window[1] - window[0])
-        near = np.array([((xy[r, 0] >= window[0] - pad) & (xy[r, 0] <= window[1] + pad) &
-                          (xy[r, 1] >= window[2] - pad) & (xy[r, 1] <= window[3] + pad)).any() for r in rings])
-        rings = [r for r, k in zip(rings, near) if k]
-        tris = tris[np.repeat(near, [1 if n == 3 else 2 for n in nnode])]
-    tri = mtri.Triangulation(d[:, 0], d[:, 1], tris)
-    shown = np.unique(tris)
-    pc = ax.tripcolor(tri, values, shading="gouraud", cmap="viridis",
-                      vmin=values[shown].min(), vmax=values[shown].max())
-    for ring in rings:
-        ax.plot(d[ring, 0], d[ring, 1], color="k", lw=0.3)
-    fig.colorbar(pc, ax=ax, label=label)
-    ax.set_aspect("equal")
-    if window is not None:
-        ax.set_xlim(window[0], window[1])
-        ax.set_ylim(window[2], window[3])
-    ax.set_xlabel("r" if ntype == 3 else "x")
-    ax.set_ylabel("z" if ntype == 3 else "y")
-    ax.set_title(f"{title}\nincrement {int(key)}, load factor {np.round(lam, 4)}, displacements x {scale:.3g}",
-                 fontsize=9)
-
-    if contact is not None:
-        ax2 = axes[0, 1]
-        pos = contact["position"]
-        # abscissa: the coordinate along which the pairs spread most (x or r for a flat surface)
-        axis = 0 if np.ptp(pos[:, 0]) >= np.ptp(pos[:, 1]) else 1
-        xc = pos[:, axis]
-        order = np.argsort(xc)
-        xc = xc[order]
-        pn, pt = contact["pressure"][order], contact["shear"][order]
-        closed = contact["normal_state"][order] > 0
-        slip = closed & (contact["tangential_state"][order] == 2)
-        branch = closed & (contact["tangential_state"][order] == 1)
-        ax2.plot(xc, pn, "o-", ms=3, color="C0", label="normal pressure p_n")
-        ax2.plot(xc, pt, "s-", ms=3, color="C1", label="shear stress p_T")
-        if slip.any():
-            ax2.plot(xc[slip], pt[slip], "s", ms=6, color="C3", label="slipping pairs")
-        if branch.any():
-            ax2.plot(xc[branch], pt[branch], "s", ms=6, mfc="none", color="C2", label="hardening branch")
-        if (~closed).any():
-            ax2.plot(xc[~closed], np.zeros((~closed).sum()), "x", ms=4, color="0.5", label="open pairs")
-            # zoom on the closed part of a contact that opens towards its end
-            last = xc[closed].max() if closed.any() else xc.max()
-            ax2.set_xlim(xc.min() - 0.02 * (last - xc.min()), last + 0.25 * (last - xc.min()))
-        name = ("r" if ntype == 3 else "x") if axis == 0 else ("z" if ntype == 3 else "y")
-        ax2.set_xlabel(name + " of the pairs (node b)")
-        ax2.set_ylabel("contact stress")
-        ax2.axhline(0.0, color="0.7", lw=0.8)
-        ax2.grid(True, alpha=0.3)
-        ax2.legend(fontsize=8)
-        ax2.set_title("contact stresses: %d of %d pairs closed, %d slipping; sum F_n = %.6g"
-                      % (closed.sum(), len(closed), slip.sum(), contact["force_normal"].sum()), fontsize=9)
-
-    out = args.output or args.results.rsplit(".", 1)[0] + ".png"
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    try:
+        out = plot_result(args.results, args.output, args.increment, args.component, args.scale, args.zoom)
+    except ValueError as e:
+        sys.exit(str(e))
     print(f"plot: {out}")
 
 

@@ -1,7 +1,15 @@
-# Run kontakt2d on a deck that must succeed: exit code 0 and a result file
-# whose status attribute says "completed".
-#   cmake -DEXE=... -DDECK=... -DWORK=... [-DARGS=...] [-DH5DUMP=...] -P run_good_deck.cmake
+# Run kontakt2d on a deck that must succeed: exit code 0, a result file whose
+# status attribute says "completed", and the expected values of <deck>.check
+# beside the deck (docs/DEVELOPERS.md: "Expected values of a good deck"),
+# compared by CHECK_TOOL (tests/decks/check_deck.py) when Python is given.
+#   cmake -DEXE=... -DDECK=... -DWORK=... [-DARGS=...] [-DH5DUMP=...]
+#         [-DPYTHON=... -DCHECK_TOOL=...] -P run_good_deck.cmake
 get_filename_component(name "${DECK}" NAME_WE)
+get_filename_component(dir "${DECK}" DIRECTORY)
+set(check_file "${dir}/${name}.check")
+if(NOT EXISTS "${check_file}")
+  message(FATAL_ERROR "no expected values for ${DECK}: every good deck carries them in ${name}.check beside it")
+endif()
 set(out "${WORK}/${name}.h5")
 file(REMOVE "${out}")
 separate_arguments(extra UNIX_COMMAND "${ARGS}")
@@ -20,3 +28,13 @@ if(H5DUMP)
   endif()
 endif()
 message(STATUS "${stdout}")
+if(PYTHON AND CHECK_TOOL)
+  execute_process(COMMAND "${PYTHON}" "${CHECK_TOOL}" "${out}" "${check_file}"
+    RESULT_VARIABLE rc3 OUTPUT_VARIABLE checked ERROR_VARIABLE err3)
+  if(NOT rc3 STREQUAL "0")
+    message(FATAL_ERROR "expected values of ${name}.check (exit code ${rc3}):\n${checked}\n${err3}")
+  endif()
+  message(STATUS "${checked}")
+else()
+  message(STATUS "${name}.check not compared: needs python3 with h5py and numpy")
+endif()

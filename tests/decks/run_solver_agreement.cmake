@@ -1,8 +1,11 @@
 # Run one deck with the skyline and the UMFPACK solver and compare the
 # displacements (compare_results.py, relative 1e-10).  When GEO is given, the
 # deck and its .geo are copied to WORK and the .msh is made there with gmsh
-# first, so that nothing is generated in the source tree.
-#   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCOMPARE=... [-DGEO=... -DGMSH=...] -P ...
+# first, so that nothing is generated in the source tree.  With CHECK_TOOL the
+# skyline result is also compared with the expected values of <deck>.check
+# beside the deck (for the decks that no run_good_deck.cmake test runs).
+#   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCOMPARE=... [-DGEO=... -DGMSH=...]
+#         [-DCHECK_TOOL=...] -P run_solver_agreement.cmake
 get_filename_component(name "${DECK}" NAME_WE)
 set(dir "${WORK}/${name}")
 file(REMOVE_RECURSE "${dir}")
@@ -35,3 +38,16 @@ if(NOT rc STREQUAL "0")
   message(FATAL_ERROR "skyline and umfpack disagree on ${name}:\n${out}\n${err}")
 endif()
 message(STATUS "${name}: ${out}")
+if(CHECK_TOOL)
+  get_filename_component(deck_dir "${DECK}" DIRECTORY)
+  set(check_file "${deck_dir}/${name}.check")
+  if(NOT EXISTS "${check_file}")
+    message(FATAL_ERROR "no expected values for ${DECK}: every good deck carries them in ${name}.check beside it")
+  endif()
+  execute_process(COMMAND "${PYTHON}" "${CHECK_TOOL}" "${dir}/${name}_skyline.h5" "${check_file}"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc STREQUAL "0")
+    message(FATAL_ERROR "expected values of ${name}.check (exit code ${rc}):\n${out}\n${err}")
+  endif()
+  message(STATUS "${out}")
+endif()

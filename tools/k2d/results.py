@@ -18,6 +18,7 @@ names: scripts and tests read results through this module.
     r.step(12)                       # the group of increment 12 (KeyError if not kept)
     r.last                           # the last kept increment
     r.history("law_drift")           # an increment attribute over r.steps (NaN where absent)
+    dataset("x.h5", "/mesh/cells_quad4")   # one dataset by its path (the XDMF sidecar names them)
 
 Per-increment datasets are read when asked for (a result file may hold
 hundreds of increments); the file is opened for each read and closed again,
@@ -158,3 +159,13 @@ class Result:
     def load_factors(self):
         """(nsteps, ncase) load factors of the kept increments."""
         return np.array([s.load_factor for s in self.steps]).reshape(len(self.steps), -1)
+
+
+def dataset(path, name):
+    """The dataset `name` (a path inside the file, e.g. "/increments/00003/displacement", as the
+    XDMF sidecar names it) of the result file `path`, read whole.  KeyError if the file holds
+    no dataset of that name."""
+    with h5py.File(str(path), "r") as f:
+        if name not in f or not isinstance(f[name], h5py.Dataset):
+            raise KeyError("%s holds no dataset %s" % (path, name))
+        return f[name][()]

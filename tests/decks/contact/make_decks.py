@@ -7,30 +7,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "tools"))
-from k2d.deck import Deck, graded  # noqa: E402
-
-
-def block_on_base(title, ntype=1, nnode=4, xs=None, nya=4, W=10.0, H=10.0, E=1000.0, nu=0.0,
-                  fix_x_line=True):
-    """Body A: block [0,W]x[0,H]; body B: layer [0,W]x[-1,0], every node fixed (rigid base)."""
-    d = Deck(title, ntype=ntype, nnode=nnode)
-    xs = xs or [W * i / 4 for i in range(5)]
-    d.block("A", xs, [H * j / nya for j in range(nya + 1)], 1)
-    d.block("B", xs, [-1.0, 0.0], 2)
-    d.material(1, E, nu, 1.0)
-    d.material(2, E, nu, 1.0)
-    for n in d.nodes_where("B", lambda x, y: True):
-        d.fix(n, "11")
-    if fix_x_line and ntype != 3:
-        for n in d.nodes_where("A", lambda x, y: abs(x) < 1e-12):
-            d.fix(n, "10")
-    return d
-
-
-def surfaces(d):
-    sa = d.nodes_where("A", lambda x, y: abs(y) < 1e-12)
-    sb = d.nodes_where("B", lambda x, y: abs(y) < 1e-12)
-    return ["SURFACE   A"] + d.node_list_cards(sa) + ["SURFACE   B"] + d.node_list_cards(sb)
+from k2d.patch import block_on_base, surfaces  # noqa: E402
 
 
 def v1(name, ntype, nnode, xs=None, update="EXPLICIT", nudge=0.0):

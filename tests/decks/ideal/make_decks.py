@@ -16,6 +16,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "tools"))
+from k2d import examples  # noqa: E402
 from k2d.deck import Deck, fine_then_graded, f10  # noqa: E402
 
 E_STEEL10 = 21000.0     # the paper's example 5.2 (1/10 of steel)
@@ -394,15 +395,14 @@ def annulus(name="annulus_rigid"):
 
 
 def v6_quadratic_start(name="v6_hertz_q8_start3"):
-    """Example 5.2's smooth sphere (tools/make_examples.py) with Q8 elements, a coarse
+    """Example 5.2's smooth sphere (k2d.examples.sphere) with Q8 elements, a coarse
     contact mesh and the paper's 3 start pairs, 5 % first increment: two of the
     start pairs lie across open gaps, and a quadratic edge loaded at its midside
     lifts its corner on the axis, so a first solution that ignored the gaps found
     every start pair open (a singular system, or under condensation a body out of
     equilibrium by 14 % of the load)."""
-    import make_examples
-    d = make_examples.sphere(os.path.join(HERE, name + ".dat"), P=200.0, cn=None, nnode=8, hdiv=2.5, nincs=5,
-                             update="NEWTON", rho_b=20.0, q=1.5, fine=2.0, reach=3.0)
+    d = examples.sphere(os.path.join(HERE, name + ".dat"), P=200.0, cn=None, nnode=8, hdiv=2.5, nincs=5,
+                        update="NEWTON", rho_b=20.0, q=1.5, fine=2.0, reach=3.0)
     d.comments.insert(0, "Ideal law, Q8, start pairs across gaps (tests/decks/ideal/make_decks.py, v6_quadratic_start).")
     d.write(os.path.join(HERE, name + ".dat"))
 

@@ -7,10 +7,9 @@ import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "contact"))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "tools"))
-from make_decks import block_on_base, surfaces  # noqa: E402
 from k2d.deck import Deck  # noqa: E402
+from k2d.patch import block_on_base, surfaces  # noqa: E402
 
 
 def write(d, name, comments):
