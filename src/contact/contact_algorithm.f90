@@ -585,7 +585,13 @@ contains
          if (md%closed .and. ifc%friction /= FRICTION_NONE) then
             lim = md%mu*max(st%lam_n(jp), 0.0_dp)
             trial_t = st%lam_t(jp) + st%eps_t(jp)*st%dut(jp)
-            if (abs(trial_t) <= lim .or. (md%tstate == TS_SLIP .and. trial_t*md%sdir < 0.0_dp)) then
+            ! the cone is widened by the round-off allowance of the Coulomb check
+            ! (1e-10 F_n): with lam_n = 0 (the first iterate of a pair closed
+            ! without force) the bound is zero, and an exact test would decide
+            ! stick or slip, and so the number of repeats, by the sign of the
+            ! round-off in du_T of a pair that does not move tangentially
+            if (abs(trial_t) <= lim + 1.0e-10_dp*st%fn(jp) .or. &
+                (md%tstate == TS_SLIP .and. trial_t*md%sdir < 0.0_dp)) then
                ! stick; also a slipping pair whose trial force has turned
                ! against its slip: it sticks first and its stick stiffness
                ! settles the new state (a jump from +g to -g at once, across
