@@ -1,8 +1,11 @@
-# Run one deck with the skyline and the UMFPACK solver and compare the
-# displacements (compare_results.py, relative 1e-10).  When GEO is given, the
+# Run one deck with the skyline solver and each of the sparse solvers of the
+# build (SOLVERS: umfpack, mumps) and compare the displacements of each with
+# the skyline's (compare_results.py, relative 1e-10).  When GEO is given, the
 # deck and its .geo are copied to WORK and the .msh is made there with gmsh
 # first, so that nothing is generated in the source tree.
-#   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCOMPARE=... [-DGEO=... -DGMSH=...] -P ...
+#   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCOMPARE=... -DSOLVERS=umfpack,mumps
+#         [-DGEO=... -DGMSH=...] -P ...
+string(REPLACE "," ";" SOLVERS "${SOLVERS}")
 get_filename_component(name "${DECK}" NAME_WE)
 set(dir "${WORK}/${name}")
 file(REMOVE_RECURSE "${dir}")
@@ -21,7 +24,7 @@ if(GEO)
 else()
   set(deck "${DECK}")
 endif()
-foreach(solver skyline umfpack)
+foreach(solver skyline ${SOLVERS})
   execute_process(COMMAND "${EXE}" "${deck}" -q -s ${solver} -o "${dir}/${name}_${solver}.h5"
                   -l "${dir}/${name}_${solver}.lis"
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -29,9 +32,12 @@ foreach(solver skyline umfpack)
     message(FATAL_ERROR "kontakt2d -s ${solver} failed (${rc}):\n${out}\n${err}")
   endif()
 endforeach()
-execute_process(COMMAND "${PYTHON}" "${COMPARE}" "${dir}/${name}_skyline.h5" "${dir}/${name}_umfpack.h5"
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc STREQUAL "0")
-  message(FATAL_ERROR "skyline and umfpack disagree on ${name}:\n${out}\n${err}")
-endif()
-message(STATUS "${name}: ${out}")
+foreach(solver ${SOLVERS})
+  execute_process(COMMAND "${PYTHON}" "${COMPARE}" "${dir}/${name}_skyline.h5" "${dir}/${name}_${solver}.h5"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc STREQUAL "0")
+    message(FATAL_ERROR "skyline and ${solver} disagree on ${name}:\n${out}\n${err}")
+  endif()
+  string(STRIP "${out}" out)
+  message(STATUS "${name}, skyline vs ${solver}: ${out}")
+endforeach()
