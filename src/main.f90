@@ -11,6 +11,7 @@ program kontakt2d
    use deck_reader, only: read_deck
    use incremental, only: run_options_t, run_result_t, run_analysis
    use results_hdf5, only: K2D_VERSION
+   use parallel, only: parallel_init
    implicit none
 
    type(model_t) :: m
@@ -21,6 +22,7 @@ program kontakt2d
    character(len=:), allocatable :: deck, arg
    integer :: i, nargs
 
+   call parallel_init()     ! MPI runs: rank 0 runs the analysis, the others serve MUMPS (docs/parallel.md)
    opts%results_path = ''
    opts%listing_path = ''
    opts%solver_name = ''
@@ -43,8 +45,8 @@ program kontakt2d
          opts%listing_path = option_value(i, arg)
       case ('-s', '--solver')
          opts%solver_name = upper(option_value(i, arg))
-         if (all(opts%solver_name /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'DENSE'])) then
-            call usage_error('--solver expects skyline, umfpack or dense, found "'//get_arg(i)//'"')
+         if (all(opts%solver_name /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'DENSE', 'MUMPS'])) then
+            call usage_error('--solver expects skyline, umfpack, mumps or dense, found "'//get_arg(i)//'"')
          end if
       case ('-q', '--quiet')
          opts%quiet = .true.
@@ -111,7 +113,7 @@ contains
       write (stdout, '(a)') '  -o, --output FILE     HDF5 result file (default: <deck name>.h5 in the working directory)'
       write (stdout, '(a)') '  -l, --listing FILE    printed listing (default: results name with .lis; OPTIONS LISTING NONE'
       write (stdout, '(a)') '                        in the deck suppresses it)'
-      write (stdout, '(a)') '  -s, --solver NAME     override the deck''s solver: skyline, umfpack or dense'
+      write (stdout, '(a)') '  -s, --solver NAME     override the deck''s solver: skyline, umfpack, mumps or dense'
       write (stdout, '(a)') '  -q, --quiet           print nothing but errors'
       write (stdout, '(a)') '  -V, --version         print the version and exit'
       write (stdout, '(a)') '  -h, --help            print this help and exit'

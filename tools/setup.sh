@@ -3,8 +3,12 @@
 # configures and builds the project with CMake.
 
 K2D_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-K2D_PACKAGES="gfortran gcc make cmake liblapack-dev libblas-dev libsuitesparse-dev \
-libhdf5-dev hdf5-tools gmsh python3 python3-h5py python3-numpy python3-matplotlib"
+K2D_PACKAGES="gfortran gcc make cmake liblapack-dev libblas-dev libopenblas-dev libsuitesparse-dev \
+libmumps-seq-dev libhdf5-dev hdf5-tools gmsh python3 python3-h5py python3-numpy python3-matplotlib"
+# K2D_MPI=1: the MPI build instead (cmake -DKONTAKT2D_MPI=ON, in build-mpi/; docs/parallel.md),
+# with the MPI MUMPS and OpenMPI.
+K2D_MPI=${K2D_MPI:-0}
+[ "$K2D_MPI" = 1 ] && K2D_PACKAGES="$K2D_PACKAGES libmumps-dev libopenmpi-dev openmpi-bin"
 # Python tools run on Debian's interpreter with Debian's packages.
 K2D_PYTHON=/usr/bin/python3
 
@@ -32,9 +36,11 @@ k2d_ensure_packages() {
 # Configure (once) and build.  $1 = build type (Release or Debug), $2 = build dir.
 k2d_build() {
   local type=${1:-Release} dir=${2:-$K2D_ROOT/build}
+  local mpi=""
+  [ "$K2D_MPI" = 1 ] && mpi="-DKONTAKT2D_MPI=ON"
   if [ ! -f "$dir/CMakeCache.txt" ]; then
-    k2d_log "configuring $type build in $dir"
-    cmake -S "$K2D_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE="$type" >&2
+    k2d_log "configuring $type build in $dir ${mpi}"
+    cmake -S "$K2D_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE="$type" $mpi >&2
   fi
   k2d_log "building"
   cmake --build "$dir" -j "$(nproc 2>/dev/null || echo 2)" >&2

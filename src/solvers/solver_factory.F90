@@ -3,10 +3,15 @@
 !! The driver asks for a solver by name and holds it as
 !! `class(linear_solver_t)`; this is the one place that knows the concrete
 !! types.  Names are case-insensitive: `skyline`, `dense` and, in builds with
-!! UMFPACK, `umfpack`.
+!! them, `umfpack` and `mumps`.
 !!
-!! This file is preprocessed (.F90) because the UMFPACK solver is compiled
-!! only when CMake defines KONTAKT2D_HAVE_UMFPACK.
+!! This file is preprocessed (.F90) because the UMFPACK and MUMPS solvers are
+!! compiled only when CMake defines KONTAKT2D_HAVE_UMFPACK and
+!! KONTAKT2D_HAVE_MUMPS.
+!!
+!! An MPI run of several processes (docs/parallel.md) takes part in the
+!! solver's work only through MUMPS: with more than one process every other
+!! solver is refused, so that only the root process ever runs an analysis.
 module solver_factory
    use errors, only: status_t, STAT_INPUT
    use linear_solver, only: linear_solver_t
@@ -24,6 +29,11 @@ module solver_factory
 #if K2D_UMFPACK_SOLVER
    use umfpack_solver, only: umfpack_solver_t
 #endif
+#ifdef KONTAKT2D_HAVE_MUMPS
+   use mumps_solver, only: mumps_solver_t
+#endif
+   use parallel, only: process_count
+   use strings, only: itoa
    implicit none
    private
 
@@ -40,6 +50,11 @@ contains
       class(linear_solver_t), allocatable, intent(out) :: solver  !! the new, empty solver
       type(status_t), intent(inout) :: status                     !! STAT_INPUT if unknown
 
+      if (process_count() > 1 .and. lowercase(trim(adjustl(name))) /= 'mumps') then
+         call status%set(STAT_INPUT, 'linear solver "'//trim(adjustl(name))//'" cannot run on '// &
+                         itoa(process_count())//' MPI processes: only "mumps" can (-s mumps)')
+         return
+      end if
       select case (lowercase(trim(adjustl(name))))
       case ('skyline')
          allocate (skyline_solver_t :: solver)
@@ -51,6 +66,13 @@ contains
 #else
          call status%set(STAT_INPUT, 'linear solver "umfpack" is not available in this build '// &
                          '(built without UMFPACK); valid names are: '//solver_names())
+#endif
+      case ('mumps')
+#ifdef KONTAKT2D_HAVE_MUMPS
+         allocate (mumps_solver_t :: solver)
+#else
+         call status%set(STAT_INPUT, 'linear solver "mumps" is not available in this build '// &
+                         '(built without MUMPS); valid names are: '//solver_names())
 #endif
       case default
          call status%set(STAT_INPUT, 'unknown linear solver "'//trim(adjustl(name))// &
@@ -64,6 +86,9 @@ contains
       s = 'skyline, dense'
 #if K2D_UMFPACK_SOLVER
       s = s//', umfpack'
+#endif
+#ifdef KONTAKT2D_HAVE_MUMPS
+      s = s//', mumps'
 #endif
    end function solver_names
 

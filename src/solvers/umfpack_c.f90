@@ -12,7 +12,7 @@ module umfpack_c
    implicit none
    private
 
-   public :: umfpack_di_defaults, umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
+   public :: umfpack_di_defaults, umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, umfpack_di_wsolve, &
              umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_get_lunz, &
              umfpack_di_get_numeric
 
@@ -50,7 +50,8 @@ module umfpack_c
                                  UMFPACK_SYMBOLIC_PEAK_MEMORY = 13, UMFPACK_SYMBOLIC_SIZE = 14, &
                                  UMFPACK_NUMERIC_SIZE = 40, UMFPACK_PEAK_MEMORY = 41, &
                                  UMFPACK_FLOPS = 42, UMFPACK_LNZ = 43, UMFPACK_UNZ = 44, &
-                                 UMFPACK_RCOND = 67, UMFPACK_UMIN = 71, UMFPACK_UMAX = 72
+                                 UMFPACK_RCOND = 67, UMFPACK_UMIN = 71, UMFPACK_UMAX = 72, &
+                                 UMFPACK_IR_TAKEN = 80, UMFPACK_OMEGA1 = 82, UMFPACK_OMEGA2 = 83
 
    interface
       !> Default Control parameters.
@@ -98,6 +99,23 @@ module umfpack_c
          real(c_double), intent(in) :: control(*)
          real(c_double), intent(out) :: info(*)
       end function umfpack_di_solve
+
+      !> umfpack_di_solve with the workspace given (no allocation inside):
+      !! Wi (n) and W (n without iterative refinement, 5 n with it).
+      integer(c_int) function umfpack_di_wsolve(sys, ap, ai, ax, x, b, numeric, control, info, wi, w) &
+         bind(C, name='umfpack_di_wsolve')
+         import :: c_int, c_double, c_ptr
+         integer(c_int), value :: sys
+         integer(c_int), intent(in) :: ap(*), ai(*)
+         real(c_double), intent(in) :: ax(*)
+         real(c_double), intent(out) :: x(*)
+         real(c_double), intent(in) :: b(*)
+         type(c_ptr), value :: numeric
+         real(c_double), intent(in) :: control(*)
+         real(c_double), intent(out) :: info(*)
+         integer(c_int), intent(out) :: wi(*)
+         real(c_double), intent(out) :: w(*)
+      end function umfpack_di_wsolve
 
       !> Free a symbolic object and set the handle to NULL.
       subroutine umfpack_di_free_symbolic(symbolic) bind(C, name='umfpack_di_free_symbolic')

@@ -15,8 +15,18 @@
 !! strategy, which prefers diagonal pivots) on the pattern alone, so it is
 !! kept for as long as the pattern does not change, i.e. across increments.
 !! `factorize` runs the numeric factorization on the current values;
-!! `solve` may be called any number of times per factorization (UMFPACK's
-!! iterative refinement uses the assembled values, which stay intact).
+!! `solve` may be called any number of times per factorization, without
+!! allocating anything: the solution and UMFPACK's workspace are kept with
+!! the pattern (umfpack_di_wsolve).
+!!
+!! Iterative refinement.  UMFPACK refines every solution by default (up to 2
+!! steps, Control[UMFPACK_IRSTEP]), which doubles the cost of a solve and
+!! buys nothing on these systems: symmetric positive definite, factorized
+!! with diagonal pivots, whose backward error is already at round-off.
+!! Measured without it: residuals and agreement with the skyline solver
+!! unchanged at round-off on the unit tests, the example decks and the
+!! benchmark mesh (docs/solvers.md).  `refine_steps` sets it (before
+!! `analyse`); the default is 0.
 !!
 !! Singular matrices.  UMFPACK reports an exactly zero pivot as a warning
 !! (status +1); a rigid-body mode usually gives a round-off pivot instead,
@@ -49,10 +59,16 @@ module umfpack_solver
    type, extends(linear_solver_t) :: umfpack_solver_t
       !> Relative pivot threshold, the same as the skyline solver's.
       real(dp) :: pivot_tol = 1.0e-12_dp
+      !> Steps of iterative refinement per solve, Control[UMFPACK_IRSTEP]
+      !! (UMFPACK's default is 2; see the module header).  Read by `analyse`.
+      integer :: refine_steps = 0
       integer(c_int), allocatable, private :: ap(:)   ! (0:neq) column pointers, 0-based
       integer(c_int), allocatable, private :: ai(:)   ! (nnz) row indices, 0-based, sorted per column
       real(c_double), allocatable, private :: ax(:)   ! (nnz) values
       real(c_double), allocatable, private :: base(:) ! stored copy of K_AB
+      real(c_double), allocatable, private :: x(:)    ! (neq) solution of a solve
+      real(c_double), allocatable, private :: w(:)    ! (neq or 5 neq) workspace of a solve
+      integer(c_int), allocatable, private :: wi(:)   ! (neq) workspace of a solve
       real(c_double), private :: control(UMFPACK_CONTROL) = 0.0_c_double
       real(c_double), private :: info(UMFPACK_INFO) = 0.0_c_double
       type(c_ptr), private :: symbolic = c_null_ptr
@@ -198,6 +214,8 @@ contains
       call umfpack_di_defaults(this%control)
       this%control(UMFPACK_STRATEGY + 1) = UMFPACK_STRATEGY_SYMMETRIC
       this%control(UMFPACK_PRL + 1) = 0.0_c_double
+      this%control(UMFPACK_IRSTEP + 1) = real(max(0, this%refine_steps), c_double)
+      allocate (this%x(neq), this%wi(neq), this%w(merge(5, 1, this%refine_steps > 0)*neq))
       if (neq > 0) then
          st = umfpack_di_symbolic(int(neq, c_int), int(neq, c_int), this%ap, this%ai, c_null_ptr, &
                                   this%symbolic, this%control, this%info)
@@ -222,6 +240,7 @@ contains
       if (allocated(this%ai)) m = m + 4_i8*size(this%ai, kind=i8)
       if (allocated(this%ax)) m = m + 8_i8*size(this%ax, kind=i8)
       if (allocated(this%base)) m = m + 8_i8*size(this%base, kind=i8)
+      if (allocated(this%x)) m = m + 8_i8*(size(this%x, kind=i8) + size(this%w, kind=i8)) + 4_i8*size(this%wi, kind=i8)
       this%stats%memory_bytes = m
    end subroutine update_memory
 
@@ -229,7 +248,7 @@ contains
    subroutine umf_zero(this)
       class(umfpack_solver_t), intent(inout) :: this
       if (this%state == ST_EMPTY) &
-         call fatal_internal('umfpack solver: zero called before analyse', 'umfpack_solver.f90', 236)
+         call fatal_internal('umfpack solver: zero called before analyse', 'umfpack_solver.f90', 250)
       call drop_numeric(this)
       this%ax = 0.0_c_double
       this%n_outside = 0
@@ -251,7 +270,7 @@ contains
       real(dp), intent(in) :: ke(:, :)    !! element matrix, size(ieq) square, symmetric
       integer :: ia, ib, i, j, nd, p
 
-      call this%check_element(ieq, ke, 'umfpack_solver.f90', 253)
+      call this%check_element(ieq, ke, 'umfpack_solver.f90', 273)
       nd = size(ieq)
       do ib = 1, nd
          j = ieq(ib)
@@ -306,7 +325,7 @@ contains
       class(umfpack_solver_t), intent(inout) :: this
       if (this%state /= ST_ASSEMBLING) call fatal_internal( &
          'umfpack solver: store_base needs assembled values (call it before factorize)', &
-         'umfpack_solver.f90', 308)
+         'umfpack_solver.f90', 326)
       this%base = this%ax
       this%base_outside = this%n_outside
       this%base_first_outside = this%first_outside
@@ -318,7 +337,7 @@ contains
    subroutine umf_restore_base(this)
       class(umfpack_solver_t), intent(inout) :: this
       if (.not. allocated(this%base) .or. this%state == ST_EMPTY) call fatal_internal( &
-         'umfpack solver: restore_base without store_base', 'umfpack_solver.f90', 320)
+         'umfpack solver: restore_base without store_base', 'umfpack_solver.f90', 339)
       call drop_numeric(this)
       this%ax(:) = this%base(:)
       this%n_outside = this%base_outside
@@ -486,7 +505,6 @@ contains
       class(umfpack_solver_t), intent(inout) :: this
       real(dp), intent(inout) :: b(:)          !! (neq) right-hand side in, solution out
       type(status_t), intent(inout) :: status  !! set only on failure
-      real(c_double), allocatable :: x(:), bc(:)
       integer(c_int) :: st
 
       if (.not. this%ready_to_solve(size(b), status)) return
@@ -494,14 +512,13 @@ contains
          this%stats%solves = this%stats%solves + 1
          return
       end if
-      allocate (x(this%neq), bc(this%neq))
-      bc(:) = real(b, c_double)
-      st = umfpack_di_solve(UMFPACK_A, this%ap, this%ai, this%ax, x, bc, this%numeric, this%control, this%info)
+      st = umfpack_di_wsolve(UMFPACK_A, this%ap, this%ai, this%ax, this%x, b, this%numeric, this%control, &
+                             this%info, this%wi, this%w)
       if (st /= UMFPACK_OK) then
          call status%set(STAT_SOLVER, 'umfpack solver: solve failed: '//umfpack_status_text(st))
          return
       end if
-      b = real(x, dp)
+      b(:) = this%x
       this%stats%solves = this%stats%solves + 1
    end subroutine umf_solve
 
@@ -515,6 +532,7 @@ contains
       if (allocated(this%ai)) deallocate (this%ai)
       if (allocated(this%ax)) deallocate (this%ax)
       if (allocated(this%base)) deallocate (this%base)
+      if (allocated(this%x)) deallocate (this%x, this%w, this%wi)
       call this%reset_common()
       this%symbolic_bytes = 0
       this%numeric_bytes = 0

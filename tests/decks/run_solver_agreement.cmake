@@ -1,11 +1,13 @@
-# Run one deck with the skyline and the UMFPACK solver and compare the
-# displacements (compare_results.py, relative 1e-10).  When GEO is given, the
+# Run one deck with the skyline solver and each of the sparse solvers of the
+# build (SOLVERS: umfpack, mumps) and compare the displacements of each with
+# the skyline's (compare_results.py, relative 1e-10).  When GEO is given, the
 # deck and its .geo are copied to WORK and the .msh is made there with gmsh
 # first, so that nothing is generated in the source tree.  With CHECK_TOOL the
 # skyline result is also compared with the expected values of <deck>.check
 # beside the deck (for the decks that no run_good_deck.cmake test runs).
-#   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCOMPARE=... [-DGEO=... -DGMSH=...]
-#         [-DCHECK_TOOL=...] -P run_solver_agreement.cmake
+#   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCOMPARE=... -DSOLVERS=umfpack,mumps
+#         [-DGEO=... -DGMSH=...] [-DCHECK_TOOL=...] -P run_solver_agreement.cmake
+string(REPLACE "," ";" SOLVERS "${SOLVERS}")
 get_filename_component(name "${DECK}" NAME_WE)
 set(dir "${WORK}/${name}")
 file(REMOVE_RECURSE "${dir}")
@@ -24,7 +26,7 @@ if(GEO)
 else()
   set(deck "${DECK}")
 endif()
-foreach(solver skyline umfpack)
+foreach(solver skyline ${SOLVERS})
   execute_process(COMMAND "${EXE}" "${deck}" -q -s ${solver} -o "${dir}/${name}_${solver}.h5"
                   -l "${dir}/${name}_${solver}.lis"
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -32,12 +34,15 @@ foreach(solver skyline umfpack)
     message(FATAL_ERROR "kontakt2d -s ${solver} failed (${rc}):\n${out}\n${err}")
   endif()
 endforeach()
-execute_process(COMMAND "${PYTHON}" "${COMPARE}" "${dir}/${name}_skyline.h5" "${dir}/${name}_umfpack.h5"
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc STREQUAL "0")
-  message(FATAL_ERROR "skyline and umfpack disagree on ${name}:\n${out}\n${err}")
-endif()
-message(STATUS "${name}: ${out}")
+foreach(solver ${SOLVERS})
+  execute_process(COMMAND "${PYTHON}" "${COMPARE}" "${dir}/${name}_skyline.h5" "${dir}/${name}_${solver}.h5"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc STREQUAL "0")
+    message(FATAL_ERROR "skyline and ${solver} disagree on ${name}:\n${out}\n${err}")
+  endif()
+  string(STRIP "${out}" out)
+  message(STATUS "${name}, skyline vs ${solver}: ${out}")
+endforeach()
 if(CHECK_TOOL)
   get_filename_component(deck_dir "${DECK}" DIRECTORY)
   set(check_file "${deck_dir}/${name}.check")

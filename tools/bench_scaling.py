@@ -1,0 +1,302 @@
+#!/usr/bin/python3
+"""Scaling benchmark: the rough punch on a foundation from 1e4 to 1e6 equations, every solution path.
+
+    tools/bench_scaling.py [--sizes 1e4 3e4 ...] [--paths skyline:on umfpack:off ...]
+                           [--out DIR] [--generate-only] [--exe PATH] [--timeout S]
+
+The model (issue 13's benchmark family): plane strain, an elastic punch (half width 50, height
+50) pressed by 1.2 N/mm2 onto an elastic foundation (half width 120, depth 120), E = 4000 N/mm2,
+nu = 0.35 for both; a half model, u_x = 0 on x = 0, the foundation's base clamped.  The rough
+interface of example 5.1 (c_n = 1.0, m = 0.5, R = 1.3, S = 0.5 in um and kgf/cm2, Coulomb
+friction 0.2, no hardening branch, the NEWTON scheme) joins the punch's base to the foundation
+under it through 301 node-to-node pairs (1 202 contact equations), whatever the size.  Load:
+5 % in the first increment, then 49 equal increments: 50 increments.
+
+The meshes are gmsh's (`.geo` -> `.msh`, Q4 recombined from a frontal-Delaunay triangulation):
+both contact lines carry 300 equal segments (element size a/300 there), and the element size
+grows linearly with the distance d from the interface, h = min(h_max, h_c + g d); the growth g
+is chosen for each size so that the mesh has about the requested number of equations (an
+estimate by numerical integration of the node density 1/h^2, checked against the mesh gmsh
+makes and corrected once).  The decks use MESH/GROUP cards (docs/deck-format.md) and keep only
+the last increment in the result file (OPTIONS RESULTS 50).
+
+A path is SOLVER:CONDENSE -- the solver (skyline, umfpack, mumps; `-s`) and OPTIONS CONDENSE ON
+(bodies condensed onto the contact equations once) or OFF (the whole system factorized at every
+solution).  Each run is a separate process (OPENBLAS_NUM_THREADS=1 unless set); the table
+(terminal and OUT/scaling.csv) gives per size and path the DOFs of the mesh (2 per node, before
+the restraints), the exit code, the solutions (summed from the run's progress lines, its
+terminal log beside the result file)
+of the run, its CPU time (user + system) and peak resident memory (from the operating system),
+and the largest difference of the final displacements from the first path's, relative to the
+largest displacement (all paths solve the same equations).
+
+Sizes are 1e4, 3e4, 1e5, 3e5 and 1e6 equations (default: all; the 1e6 mesh takes about a minute
+to make and the skyline solver there hours).  Default OUT: build/bench_scaling.
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+import numpy as np  # noqa: E402
+
+from k2d.build import ROOT, find_or_build  # noqa: E402
+from k2d.deck import f10  # noqa: E402
+from k2d.results import Result  # noqa: E402
+
+SIZES = ["1e4", "3e4", "1e5", "3e5", "1e6"]
+PATHS = ["skyline:off", "skyline:on", "umfpack:off", "umfpack:on", "mumps:off", "mumps:on"]
+
+# geometry (mm), contact segments, material, load
+A_HALF, H_PUNCH, L_HALF, DEPTH = 50.0, 50.0, 120.0, 120.0
+N_CONTACT = 300
+H_MAX = 20.0
+E, NU, P0 = 4000.0, 0.35, 1.2
+
+GEO = """// Scaling benchmark: rough punch on a foundation, about {target} equations (tools/bench_scaling.py).
+a = {a}; H = {h}; L = {l}; D = {d};
+hc = a/{nc}; g = {g:.8g}; hmax = {hmax};
+// the punch
+Point(1) = {{0, 0, 0}}; Point(2) = {{a, 0, 0}}; Point(3) = {{a, H, 0}}; Point(4) = {{0, H, 0}};
+Line(1) = {{1, 2}}; Line(2) = {{2, 3}}; Line(3) = {{3, 4}}; Line(4) = {{4, 1}};
+Curve Loop(1) = {{1, 2, 3, 4}}; Plane Surface(1) = {{1}};
+// the foundation: under the punch and beside it (its own points: the bodies share no node)
+Point(11) = {{0, 0, 0}}; Point(12) = {{a, 0, 0}}; Point(13) = {{L, 0, 0}};
+Point(14) = {{L, -D, 0}}; Point(15) = {{a, -D, 0}}; Point(16) = {{0, -D, 0}};
+Line(11) = {{11, 12}}; Line(12) = {{12, 13}}; Line(13) = {{13, 14}}; Line(14) = {{14, 15}};
+Line(15) = {{15, 16}}; Line(16) = {{16, 11}}; Line(17) = {{12, 15}};
+Curve Loop(2) = {{11, 17, 15, 16}}; Plane Surface(2) = {{2}};
+Curve Loop(3) = {{12, 13, 14, -17}}; Plane Surface(3) = {{3}};
+// both contact lines: {nc} equal segments, so that their nodes pair one to one
+Transfinite Curve{{1, 11}} = {nc} + 1;
+Field[1] = Distance; Field[1].CurvesList = {{1, 11}}; Field[1].NumPointsPerCurve = 400;
+Field[2] = MathEval; Field[2].F = Sprintf("Min(%g, %g + %g*F1)", hmax, hc, g);
+Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 0; Mesh.MeshSizeFromPoints = 0; Mesh.MeshSizeFromCurvature = 0;
+Mesh.Algorithm = 6; Mesh.RecombineAll = 1; Mesh.RecombinationAlgorithm = 1;
+Physical Surface("punch") = {{1}};
+Physical Surface("foundation") = {{2, 3}};
+Physical Curve("contact_a") = {{1}};
+Physical Curve("contact_b") = {{11}};
+Physical Curve("top") = {{3}};
+Physical Curve("symmetry") = {{4, 16}};
+Physical Curve("base") = {{14, 15}};
+"""
+
+
+def deck_text(name, msh, condense, target, neq):
+    """The deck of one size and CONDENSE choice."""
+    c = [f"# Scaling benchmark (tools/bench_scaling.py): rough punch on a foundation, plane strain,",
+         f"# {neq} DOFs (target {target}), 301 contact pairs, 50 Newton increments; units N, mm,",
+         f"# N/mm2, roughness constants in um and kgf/cm2 (UNITS KGF_UM).  Mesh {msh} from {name}.geo.",
+         "TITLE",
+         f"Scaling benchmark: rough punch on foundation, {neq} DOFs, CONDENSE {condense}",
+         "CONTROL",
+         "#NPOI NELE NVFI NTYP NNOD NMAT NGAU SOLVER",
+         "              2    2    0    2    0   SKYLINE",
+         "OPTIONS",
+         f"CONDENSE  {condense}",
+         "RESULTS           50                               # the last increment only",
+         "MESH",
+         f"GMSH      {msh}",
+         "MATERIAL  punch                            1",
+         "MATERIAL  foundation                       2",
+         "RESTRAINTS",
+         "#         group               CODE        UX        UY CASE",
+         "GROUP     symmetry              10",
+         "GROUP     base                  11",
+         "MATERIALS",
+         "#MAT          E        NU     THICK",
+         f"    1{f10(E)}{f10(NU)}{f10(1.0)}",
+         f"    2{f10(E)}{f10(NU)}{f10(1.0)}",
+         "LOADS",
+         "EDGE",
+         "#         group                       PN        PT CASE",
+         f"GROUP     top                 {f10(P0)}",
+         "CONTACT",
+         "LAW       ROUGH",
+         "UNITS     KGF_UM",
+         "NORMAL           1.0       0.5",
+         "TANGENT          1.3       0.5",
+         "FRICTION  COULOMB         0.2",
+         "HARDENING OFF",
+         "SCHEME    NEWTON",
+         "SURFACE   A         contact_a",
+         "SURFACE   B         contact_b",
+         "INCREMENTS",
+         "    1      0.05",
+         "   49       1.0",
+         "END"]
+    return "\n".join(c) + "\n"
+
+
+def nodes_estimate(g):
+    """Nodes of a quadrilateral mesh of size h(d) = min(h_max, h_c + g d): the integral of
+    1/h^2 over both bodies (d = distance to the contact line, midpoint rule)."""
+    hc = A_HALF / N_CONTACT
+
+    def integral(x0, x1, y0, y1, n=400):
+        xs = x0 + (np.arange(n) + 0.5) * (x1 - x0) / n
+        ys = y0 + (np.arange(n) + 0.5) * (y1 - y0) / n
+        x, y = np.meshgrid(xs, ys)
+        d = np.hypot(np.maximum(x - A_HALF, 0.0), y)
+        h = np.minimum(H_MAX, hc + g * d)
+        return float(np.sum(1.0 / h ** 2)) * (x1 - x0) * (y1 - y0) / n ** 2
+
+    return integral(0, A_HALF, 0, H_PUNCH) + integral(0, L_HALF, -DEPTH, 0)
+
+
+def growth_for(neq_target):
+    """The growth g whose estimated mesh has neq_target equations (2 per node), by bisection
+    on log g; 0 when even the uniform mesh is smaller."""
+    nodes = neq_target / 2.0
+    if nodes_estimate(0.0) <= nodes:
+        return 0.0
+    lo, hi = 1e-6, 10.0
+    for _ in range(60):
+        mid = math.sqrt(lo * hi)
+        if nodes_estimate(mid) > nodes:
+            lo = mid
+        else:
+            hi = mid
+    return math.sqrt(lo * hi)
+
+
+def msh_nodes(path):
+    """Number of nodes in a gmsh 4.1 ASCII file ($Nodes header)."""
+    with open(path) as f:
+        for line in f:
+            if line.startswith("$Nodes"):
+                return int(f.readline().split()[1])
+    raise ValueError(f"{path}: no $Nodes section")
+
+
+def make_mesh(out, name, target):
+    """Write NAME.geo and mesh it; adjust the growth once if gmsh's mesh is off by > 10 %."""
+    neq = float(target)
+    g = growth_for(neq)
+    for attempt in range(3):
+        geo = os.path.join(out, name + ".geo")
+        with open(geo, "w") as f:
+            f.write(GEO.format(target=target, a=A_HALF, h=H_PUNCH, l=L_HALF, d=DEPTH, nc=N_CONTACT,
+                               g=g, hmax=H_MAX))
+        msh = os.path.join(out, name + ".msh")
+        r = subprocess.run(["gmsh", "-2", "-format", "msh41", geo, "-o", msh], capture_output=True, text=True)
+        if r.returncode != 0 or not os.path.exists(msh):
+            raise SystemExit(f"gmsh failed on {geo}:\n{r.stdout[-2000:]}\n{r.stderr[-2000:]}")
+        got = 2 * msh_nodes(msh)          # equations, before the restraints
+        ratio = got / float(target)
+        if abs(ratio - 1.0) <= 0.10 or g == 0.0:
+            return msh, got
+        neq = neq / ratio                 # aim the estimate so that the mesh lands on the target
+        g = growth_for(neq)
+    return msh, got
+
+
+PROGRESS = re.compile(r"^\s+(\d+)\s+[0-9.]+\s+\S+\s+\d+\s+\d+\s+(\d+)\s+\d+\s+\S+\s+[0-9.]+\s*$")
+
+
+def solutions(log):
+    """Solutions of the whole run, summed over the progress lines of its terminal log (the
+    result file keeps the last increment only)."""
+    n = 0
+    with open(log) as f:
+        for line in f:
+            m = PROGRESS.match(line)
+            if m:
+                n += int(m.group(2))
+    return n
+
+
+def run(exe, deck, h5, solver, timeout):
+    """One run: exit code, CPU seconds (user + system) and peak RSS (MB) of the process."""
+    log = os.path.splitext(h5)[0] + ".log"
+    with open(log, "w") as f:
+        t0 = time.time()
+        p = subprocess.Popen([exe, deck, "-o", h5, "-s", solver], stdout=f, stderr=subprocess.STDOUT,
+                             cwd=os.path.dirname(deck))
+        while True:
+            pid, status, ru = os.wait4(p.pid, os.WNOHANG)
+            if pid:
+                break
+            if time.time() - t0 > timeout:
+                p.kill()
+                pid, status, ru = os.wait4(p.pid, 0)
+                return "timeout", ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024.0
+            time.sleep(0.2)
+    rc = os.waitstatus_to_exitcode(status)
+    return rc, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024.0
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--sizes", nargs="+", default=SIZES, choices=SIZES)
+    p.add_argument("--paths", nargs="+", default=PATHS, help="SOLVER:ON|OFF (default: all six)")
+    p.add_argument("--out", default=os.path.join(ROOT, "build", "bench_scaling"))
+    p.add_argument("--generate-only", action="store_true", help="write the meshes and decks, run nothing")
+    p.add_argument("--exe", help="the kontakt2d program (default: K2D_EXECUTABLE or build/kontakt2d)")
+    p.add_argument("--timeout", type=float, default=3600.0, help="seconds per run")
+    args = p.parse_args()
+    for path in args.paths:
+        s, _, c = path.partition(":")
+        if s not in ("skyline", "umfpack", "mumps", "dense") or c.upper() not in ("ON", "OFF"):
+            raise SystemExit(f"bench_scaling: a path is SOLVER:ON or SOLVER:OFF, found {path!r}")
+    os.makedirs(args.out, exist_ok=True)
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    exe = None if args.generate_only else find_or_build(args.exe)
+
+    rows = []
+    print(f"{'size':>5s} {'DOFs':>9s} {'path':>12s} {'rc':>7s} {'solutions':>9s} {'CPU [s]':>9s} "
+          f"{'peak [MB]':>9s} {'max |du|/|u|':>12s}", flush=True)
+    for size in args.sizes:
+        name = f"punch_{size}"
+        msh, neq_mesh = make_mesh(args.out, name, float(size))
+        decks = {}
+        for cond in ("ON", "OFF"):
+            deck = os.path.join(args.out, f"{name}_condense_{cond.lower()}.dat")
+            with open(deck, "w") as f:
+                f.write(deck_text(name, os.path.basename(msh), cond, size, neq_mesh))
+            decks[cond] = deck
+        print(f"{size:>5s} {neq_mesh:9d} mesh {os.path.basename(msh)}, decks {name}_condense_on/off.dat",
+              flush=True)
+        if args.generate_only:
+            continue
+        ref = None
+        for path in args.paths:
+            solver, _, cond = path.partition(":")
+            cond = cond.upper()
+            h5 = os.path.join(args.out, f"{name}_{solver}_{cond.lower()}.h5")
+            rc, cpu, rss = run(exe, decks[cond], h5, solver, args.timeout)
+            row = {"size": size, "dofs": neq_mesh, "path": path, "rc": rc, "cpu_s": round(cpu, 3),
+                   "peak_mb": round(rss, 1)}
+            if rc == 0:
+                r = Result(h5)
+                row["solutions"] = solutions(os.path.splitext(h5)[0] + ".log")
+                u = r.last.field("displacement")
+                if ref is None:
+                    ref = u
+                    row["max_rel_diff"] = 0.0
+                else:
+                    row["max_rel_diff"] = float(np.abs(u - ref).max() / np.abs(ref).max())
+            rows.append(row)
+            print(f"{size:>5s} {neq_mesh:9d} {path:>12s} {str(rc):>7s} {str(row.get('solutions', '-')):>9s} "
+                  f"{cpu:9.2f} {rss:9.1f} {row.get('max_rel_diff', float('nan')):12.2e}", flush=True)
+    if rows:
+        fields = ["size", "dofs", "path", "rc", "solutions", "cpu_s", "peak_mb", "max_rel_diff"]
+        with open(os.path.join(args.out, "scaling.csv"), "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=fields)
+            w.writeheader()
+            w.writerows(rows)
+        print(f"wrote {os.path.join(args.out, 'scaling.csv')}")
+    return 0 if all(r["rc"] == 0 for r in rows) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
