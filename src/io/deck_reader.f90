@@ -19,7 +19,7 @@ module deck_reader
    use deck_lexer, only: deck_t
    use model, only: model_t, material_t, restraint_t, point_load_t, edge_load_t, &
                     body_load_t, MAX_NODE, NTYPE_AXISYMMETRIC
-   use shape_2d, only: element_edge_nodes, nedges
+   use topology, only: element_edge_nodes, nedges
    use solid2d, only: min_jacobian
    use restraint_check, only: unrestrained_bodies
    use deck_contact, only: read_ties, read_contact

@@ -26,7 +26,7 @@ module gmsh_reader
    use errors, only: error_list_t
    use strings, only: itoa, rtoa, same_name
    use model, only: model_t, node_set_t, edge_set_t, MAX_NODE
-   use shape_2d, only: element_edge_nodes, nedges
+   use topology, only: element_edge_nodes, nedges
    use quadrature, only: valid_ngaus
    implicit none
    private
