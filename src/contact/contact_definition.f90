@@ -45,37 +45,15 @@ module contact_definition
    use contact_types, only: contact_pair_t, interface_t, rigid_body_t, LAW_ROUGH, LAW_IDEAL, &
                             PAIR_NODE, PAIR_SEGMENT, PAIR_RIGID, MATCH_SEGMENT, RIGID_CIRCLE, MAX_PAIR_NODES
    use contact_laws, only: convert_interface
+   use contact_spec, only: surface_spec_t, iface_spec_t
    use restraint_check, only: find_bodies
    use shape_2d, only: element_edge_nodes, nedges, edge_shape
    use quadrature, only: gauss_legendre
    implicit none
    private
-   public :: surface_spec_t, iface_spec_t, surface_edges, edge_nodes, surface_normals, match_surfaces, &
+   public :: surface_edges, edge_nodes, surface_normals, match_surfaces, &
              lumped_areas, node_poisson, node_modulus, define_contact, project_on_edge, project_on_rigid, &
              edge_scales
-
-   !> A surface as the deck gives it: a set name, or a list of nodes.
-   type :: surface_spec_t
-      character(len=:), allocatable :: set_name
-      integer, allocatable :: nodes(:)
-      integer :: line = 0
-      logical :: given = .false.
-   end type surface_spec_t
-
-   !> What the deck says about one interface, before the pairs are built.
-   type :: iface_spec_t
-      type(interface_t) :: law
-      type(surface_spec_t) :: surf(2)          !! A, B
-      integer, allocatable :: pa(:), pb(:)     !! explicit pairs: nodes
-      real(dp), allocatable :: pg0(:), palpha(:), parea(:)
-      logical, allocatable :: has_g0(:), has_alpha(:), has_area(:)
-      integer, allocatable :: pline(:)
-      integer :: npair = 0
-      logical :: have_normal = .false., have_friction = .false.
-      logical :: have_matching = .false.        !! a MATCHING card was given
-      integer :: line = 0
-      integer :: matching_line = 0
-   end type iface_spec_t
 
 contains
 
@@ -479,20 +457,19 @@ contains
       end do
    end subroutine project_on_rigid
 
-   !> Build the pairs of every interface from its specification, check them
-   !! and convert the interface constants to model units.  Problems go to
-   !! `errors` / `warnings`, located at the spec's lines in `file`.
-   subroutine define_contact(m, spec, file, errors, warnings)
+   !> Build the pairs of every interface from the model's contact
+   !! specification, check them and convert the interface constants to model
+   !! units.  Problems go to `errors` / `warnings`, located at the spec's
+   !! lines in the deck.
+   subroutine define_contact(m, errors, warnings)
       type(model_t), intent(inout) :: m
-      type(iface_spec_t), intent(inout) :: spec(:)
-      character(len=*), intent(in) :: file
       type(error_list_t), intent(inout) :: errors
       type(error_list_t), intent(inout) :: warnings
       type(contact_pair_t), allocatable :: pairs(:)
       integer, allocatable :: ie_b(:), ik_b(:), ie_a(:), ik_a(:), nodes_a(:), nodes_b(:), pair_b(:), body(:), nolinks(:, :)
       real(dp), allocatable :: normal(:, :), area(:), nu(:), nu_pair(:), young(:), lenv(:), share(:)
       logical, allocatable :: paired(:), used_b(:), master(:), in_elem(:)
-      character(len=:), allocatable :: msg, list
+      character(len=:), allocatable :: msg, list, file
       real(dp) :: size_model, tol, alpha, w
       integer :: i, k, j, np0, nbody, nbad, line, ie, q
       logical :: have_b, is_rigid, is_segment
@@ -503,16 +480,18 @@ contains
       call find_bodies(m, nolinks, body, nbody)
       call node_modulus(m, young, nu)
       size_model = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), maxval(m%coord(2, :)) - minval(m%coord(2, :)))
-      if (.not. allocated(m%contact%rigids)) allocate (m%contact%rigids(0))
+      file = m%deck_file
+      m%contact%rigids = m%contact_spec%rigids
+      m%contact%opts = m%contact_spec%opts
       in_elem = .false.
       do ie = 1, m%nelem
          in_elem(m%lnods(1:m%nnode_e(ie), ie)) = .true.
       end do
       call check_rigids()
       if (allocated(m%contact%ifaces)) deallocate (m%contact%ifaces)
-      allocate (m%contact%ifaces(size(spec)))
-      do i = 1, size(spec)
-         associate (s => spec(i))
+      allocate (m%contact%ifaces(size(m%contact_spec%ifaces)))
+      do i = 1, size(m%contact_spec%ifaces)
+         associate (s => m%contact_spec%ifaces(i))
             line = s%line
             if (s%law%law == LAW_ROUGH .and. .not. s%have_normal) then
                call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)//' (rough) has no NORMAL card '// &
@@ -528,8 +507,8 @@ contains
                if (s%surf(2)%given) call errors%add('E-RIGID', 'CONTACT: interface '//itoa(i)//' has a RIGID body '// &
                                  'and a SURFACE B: the rigid body is side B, give only SURFACE A (the deformable '// &
                                  'surface facing it)', file=file, line=s%surf(2)%line)
-               if (s%npair > 0) call errors%add('E-RIGID', 'CONTACT: interface '//itoa(i)//' has a RIGID body: '// &
-                                 'its pairs are built from SURFACE A, PAIRS cannot be given', file=file, line=s%pline(1))
+               if (size(s%pairs) > 0) call errors%add('E-RIGID', 'CONTACT: interface '//itoa(i)//' has a RIGID body: '// &
+                                 'its pairs are built from SURFACE A, PAIRS cannot be given', file=file, line=s%pairs(1)%line)
                if (s%have_matching) call errors%add('E-RIGID', 'CONTACT: interface '//itoa(i)//': MATCHING applies '// &
                                  'to a SURFACE B; the nodes of SURFACE A are always projected on a rigid profile', &
                                  file=file, line=s%matching_line)
@@ -538,18 +517,18 @@ contains
                                     '(the deformable surface facing it)', file=file, line=line)
                   cycle
                end if
-               if (s%surf(2)%given .or. s%npair > 0 .or. s%have_matching) cycle
+               if (s%surf(2)%given .or. size(s%pairs) > 0 .or. s%have_matching) cycle
             else if (is_segment) then
-               if (s%npair > 0) call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)//': PAIRS are '// &
+               if (size(s%pairs) > 0) call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)//': PAIRS are '// &
                                  'node-to-node; MATCHING SEGMENT builds its pairs from SURFACE A and SURFACE B', &
-                                 file=file, line=s%pline(1))
+                                 file=file, line=s%pairs(1)%line)
                if (.not. (s%surf(1)%given .and. s%surf(2)%given)) then
                   call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)//' (MATCHING SEGMENT) needs SURFACE A '// &
                                     'and SURFACE B cards', file=file, line=line)
                   cycle
                end if
-               if (s%npair > 0) cycle
-            else if (s%npair == 0 .and. .not. (s%surf(1)%given .and. s%surf(2)%given)) then
+               if (size(s%pairs) > 0) cycle
+            else if (size(s%pairs) == 0 .and. .not. (s%surf(1)%given .and. s%surf(2)%given)) then
                call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)//' needs SURFACE A and SURFACE B cards, '// &
                                  'PAIRS, or SURFACE A and a RIGID body', file=file, line=line)
                cycle
@@ -575,12 +554,12 @@ contains
                   call surface_normals(m, ie_b, ik_b, normal)
                end if
 
-               if (s%npair > 0) then
-                  do k = 1, s%npair
-                     call add_pair(s%pa(k), s%pb(k), s%pline(k))
+               if (size(s%pairs) > 0) then
+                  do k = 1, size(s%pairs)
+                     call add_pair(s%pairs(k)%node_a, s%pairs(k)%node_b, s%pairs(k)%line)
                      associate (p => pairs(size(pairs)))
-                        if (s%has_alpha(k)) then
-                           alpha = s%palpha(k)*acos(-1.0_dp)/180.0_dp
+                        if (s%pairs(k)%has_alpha) then
+                           alpha = s%pairs(k)%alpha*acos(-1.0_dp)/180.0_dp
                            p%t = [cos(alpha), sin(alpha)]
                            p%n = [-sin(alpha), cos(alpha)]
                         else if (have_b .and. norm2(normal(:, p%node_b)) > 0.0_dp) then
@@ -588,10 +567,10 @@ contains
                            p%t = [p%n(2), -p%n(1)]
                         else if (have_b) then
                            call errors%add('E-CONTACT', 'CONTACT/PAIRS: node '//itoa(p%node_b)//' is not on surface B; '// &
-                                             'give ALPHA', file=file, line=s%pline(k))
+                                             'give ALPHA', file=file, line=s%pairs(k)%line)
                         end if
-                        if (s%has_g0(k)) then
-                           p%g0 = s%pg0(k)
+                        if (s%pairs(k)%has_g0) then
+                           p%g0 = s%pairs(k)%g0
                         else
                            p%g0 = dot_product(m%coord(:, p%node_a) - m%coord(:, p%node_b), p%n)
                         end if
@@ -668,12 +647,12 @@ contains
                   pairs(k)%area = area(pairs(k)%node_b)
                   pairs(k)%length = lenv(pairs(k)%node_b)
                   pairs(k)%share = share(pairs(k)%node_b)
-                  if (k - np0 <= s%npair) then
+                  if (k - np0 <= size(s%pairs)) then
                      j = j + 1
-                     if (s%has_area(j)) pairs(k)%area = s%parea(j)
-                     if (.not. s%has_area(j) .and. .not. have_b) call errors%add('E-CONTACT', &
+                     if (s%pairs(j)%has_area) pairs(k)%area = s%pairs(j)%area
+                     if (.not. s%pairs(j)%has_area .and. .not. have_b) call errors%add('E-CONTACT', &
                          'CONTACT/PAIRS: pair '//itoa(pairs(k)%node_a)//'-'//itoa(pairs(k)%node_b)//' needs an AREA '// &
-                         '(or a SURFACE B to compute it from)', file=file, line=s%pline(j))
+                         '(or a SURFACE B to compute it from)', file=file, line=s%pairs(j)%line)
                   end if
                   if (pairs(k)%share <= 0.0_dp) pairs(k)%share = pairs(k)%area
                   if (pairs(k)%length <= 0.0_dp) then

@@ -27,7 +27,6 @@ module gmsh_reader
    use strings, only: itoa, rtoa, same_name
    use model, only: model_t, node_set_t, edge_set_t, MAX_NODE
    use topology, only: element_edge_nodes, nedges
-   use quadrature, only: valid_ngaus
    implicit none
    private
 
@@ -1033,12 +1032,6 @@ contains
          ! anticlockwise corners: reverse a clockwise element
          area = signed_area(m, ie)
          if (area < 0.0_dp) call reverse_element(m%lnods(1:nn, ie))
-         if (m%ngaus /= 0 .and. .not. valid_ngaus(nn, m%ntype, m%ngaus)) then
-            call errors%add('E-GMSH', 'NGAUS = '//itoa(m%ngaus)//' on the control card is not valid for the '// &
-                            itoa(nn)//'-node elements of the mesh (use 0 for the default rules)', &
-                            file=msh%path, line=msh%eline(k))
-            return
-         end if
       end do
       m%nnode = maxval(m%nnode_e)
 
