@@ -119,74 +119,15 @@ contains
          end do
          seen(iblk) = .true.
          last = iblk
-         ! a block whose prerequisites failed cannot be checked meaningfully
-         select case (trim(kw))
-         case ('TITLE')
-            call read_title(d, ic, m)
-         case ('CONTROL')
-            call read_control(d, ic, m, ctl)
-         case ('OPTIONS')
-            call read_options(d, m)
-         case ('MESH')
-            call start_mesh_block(d, ic, m, ctl)
-         case ('ELEMENTS')
-            if (.not. ctl%ok) then
-               call skip_to_block(d)
-            else if (mesh_conflict(d, ic, ctl, seen)) then
-               call skip_to_block(d)
-            else
-               call read_elements(d, ic, m)
-            end if
-         case ('NODES')
-            if (.not. ctl%ok) then
-               call skip_to_block(d)
-            else if (mesh_conflict(d, ic, ctl, seen)) then
-               call skip_to_block(d)
-            else
-               call read_nodes(d, ic, m)
-            end if
-         case ('RESTRAINTS')
-            m%restraints_line = d%cards(ic)%line
-            if (ctl%ok) then
-               call read_restraints(d, ic, m, ctl)
-            else
-               call skip_to_block(d)
-            end if
-         case ('TIES')
-            if (ctl%ok .and. allocated(m%coord)) then
-               call read_ties(d, m, is_block_card)
-            else
-               call skip_to_block(d)
-            end if
-         case ('CONTACT')
-            if (ctl%ok .and. allocated(m%coord) .and. allocated(m%lnods) .and. allocated(m%mats) .and. &
-                d%errors%n == 0) then
-               call read_contact(d, ic, m, is_block_card)
-            else
-               call skip_to_block(d)
-            end if
-         case ('MATERIALS')
-            if (ctl%ok) then
-               call read_materials(d, ic, m, warnings)
-            else
-               call skip_to_block(d)
-            end if
-         case ('LOADS')
-            if (ctl%ok) then
-               call read_loads(d, m)
-            else
-               call skip_to_block(d)
-            end if
-         case ('INCREMENTS')
-            call read_increments(d, m)
-         case ('END')
+         if (kw == 'END') then
             if (.not. d%at_end()) then
                ic = d%next()
                call d%error_at(ic, 1, 'E-AFTER-END', 'nothing may follow the END card, found "'// &
                                trim(d%cards(ic)%text)//'"')
             end if
             exit
-         end select
+         end if
+         call read_block(d, ic, kw, m, ctl, seen, warnings)
       end do
 
       do k = 1, size(block_order)
@@ -207,6 +148,78 @@ contains
             required = .false.
       end function required
    end subroutine read_deck
+
+   !> Read block kw, whose keyword card is ic, if the blocks it needs were read.
+   subroutine read_block(d, ic, kw, m, ctl, seen, warnings)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      character(len=*), intent(in) :: kw               !! the block keyword
+      type(model_t), intent(inout) :: m
+      type(control_t), intent(inout) :: ctl
+      logical, intent(in) :: seen(:)                   !! blocks seen so far (this one included)
+      type(error_list_t), intent(inout) :: warnings
+      ! a block whose prerequisites failed cannot be checked meaningfully: skipped
+      select case (trim(kw))
+      case ('TITLE')
+         call read_title(d, ic, m)
+      case ('CONTROL')
+         call read_control(d, ic, m, ctl)
+      case ('OPTIONS')
+         call read_options(d, m)
+      case ('MESH')
+         call start_mesh_block(d, ic, m, ctl)
+      case ('ELEMENTS')
+         if (.not. ctl%ok) then
+            call skip_to_block(d)
+         else if (mesh_conflict(d, ic, ctl, seen)) then
+            call skip_to_block(d)
+         else
+            call read_elements(d, ic, m)
+         end if
+      case ('NODES')
+         if (.not. ctl%ok) then
+            call skip_to_block(d)
+         else if (mesh_conflict(d, ic, ctl, seen)) then
+            call skip_to_block(d)
+         else
+            call read_nodes(d, ic, m)
+         end if
+      case ('RESTRAINTS')
+         m%restraints_line = d%cards(ic)%line
+         if (ctl%ok) then
+            call read_restraints(d, ic, m, ctl)
+         else
+            call skip_to_block(d)
+         end if
+      case ('TIES')
+         if (ctl%ok .and. allocated(m%coord)) then
+            call read_ties(d, m, is_block_card)
+         else
+            call skip_to_block(d)
+         end if
+      case ('CONTACT')
+         if (ctl%ok .and. allocated(m%coord) .and. allocated(m%lnods) .and. allocated(m%mats) .and. &
+             d%errors%n == 0) then
+            call read_contact(d, ic, m, is_block_card)
+         else
+            call skip_to_block(d)
+         end if
+      case ('MATERIALS')
+         if (ctl%ok) then
+            call read_materials(d, ic, m, warnings)
+         else
+            call skip_to_block(d)
+         end if
+      case ('LOADS')
+         if (ctl%ok) then
+            call read_loads(d, m)
+         else
+            call skip_to_block(d)
+         end if
+      case ('INCREMENTS')
+         call read_increments(d, m)
+      end select
+   end subroutine read_block
 
    !> MESH block: only with NPOIN = NELEM = 0 on the control card (see mesh_block).
    subroutine start_mesh_block(d, ic, m, ctl)
