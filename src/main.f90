@@ -1,14 +1,15 @@
 !> Kontakt2D command line: `kontakt2d DECK [options]`.
 !!
-!! Parses the arguments, reads the deck, runs the driver and maps the outcome
-!! to an exit code: 0 success, 1 internal error, 2 input error (deck or
-!! command line), 3 numerical failure (finished increments are kept).
+!! Parses the arguments, reads and defines the model (model_input), runs the
+!! driver and maps the outcome to an exit code: 0 success, 1 internal error,
+!! 2 input error (deck or command line), 3 numerical failure (finished
+!! increments are kept).
 program kontakt2d
    use kinds, only: stdout, stderr
    use errors, only: error_list_t, status_t, terminate, EXIT_OK, EXIT_INPUT, EXIT_NUMERICAL, STAT_INPUT
    use strings, only: upper
    use model, only: model_t
-   use deck_reader, only: read_deck
+   use model_input, only: read_model
    use incremental, only: run_options_t, run_result_t, run_analysis
    use results_hdf5, only: K2D_VERSION
    use parallel, only: parallel_init
@@ -60,7 +61,7 @@ program kontakt2d
    end do
    if (len(deck) == 0) call usage_error('no deck given')
 
-   call read_deck(deck, m, errs, warns)
+   call read_model(deck, m, errs, warns)
    if (warns%count() > 0) call warns%print()
    if (errs%count() > 0) then
       call errs%print()

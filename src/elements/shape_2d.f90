@@ -10,6 +10,9 @@
 !! Edge k runs from corner k to corner k+1 (cyclic) with midside node
 !! `ncorn + k`; an edge's node list is (start, end, mid).  For a positively
 !! oriented element the element lies to the left of the walk start -> end.
+!! That numbering (`corner_count`, `nedges`, `element_edge_nodes`) lives in
+!! the model layer (module topology), which the readers use without the
+!! kernels; it is re-exported here.
 !!
 !! Procedures that receive an unsupported `nnode` or `nn` stop with an
 !! internal error: callers validate element types with `element_code`
@@ -20,6 +23,7 @@
 !!      (serendipity and Lagrange families).
 module shape_2d
    use kinds, only: dp
+   use topology, only: corner_count, nedges, element_edge_nodes   ! numbering, re-exported
    implicit none
    private
 
@@ -70,52 +74,6 @@ contains
          element_nnode = 0
       end select
    end function element_nnode
-
-   !> Number of corner nodes (3 or 4); 0 if the element is not supported.
-   pure integer function corner_count(nnode)
-      integer, intent(in) :: nnode   !! nodes per element
-
-      select case (nnode)
-      case (3)
-         corner_count = 3
-      case (4, 8, 9)
-         corner_count = 4
-      case default
-         corner_count = 0
-      end select
-   end function corner_count
-
-   !> Number of edges (3 or 4); 0 if the element is not supported.
-   pure integer function nedges(nnode)
-      integer, intent(in) :: nnode   !! nodes per element
-
-      nedges = corner_count(nnode)
-   end function nedges
-
-   !> Local node numbers of edge `iedge`, in the order (start, end, mid).
-   !!
-   !! Edge k runs from corner k to corner k+1 (cyclic); quadratic elements
-   !! add midside node 4+k.  An invalid element or edge gives `nn = 0`.
-   pure subroutine element_edge_nodes(nnode, iedge, local, nn)
-      integer, intent(in) :: nnode      !! nodes per element: 3, 4, 8 or 9
-      integer, intent(in) :: iedge      !! edge number, 1..nedges(nnode)
-      integer, intent(out) :: local(3)  !! local node numbers; local(3) = 0 for 2-node edges
-      integer, intent(out) :: nn        !! nodes on the edge: 2, 3, or 0 if invalid
-      integer :: ncorn
-
-      local = 0
-      nn = 0
-      ncorn = corner_count(nnode)
-      if (ncorn == 0 .or. iedge < 1 .or. iedge > ncorn) return
-      local(1) = iedge
-      local(2) = mod(iedge, ncorn) + 1
-      if (nnode >= 8) then
-         local(3) = ncorn + iedge
-         nn = 3
-      else
-         nn = 2
-      end if
-   end subroutine element_edge_nodes
 
    !> Natural coordinates (s, t) of the element's nodes.
    pure subroutine node_natural_coords(nnode, snode)

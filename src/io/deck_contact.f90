@@ -1,25 +1,42 @@
 !> Readers of the TIES and CONTACT blocks of a deck (docs/deck-format.md).
 !!
 !! CONTACT holds keyword cards (keyword in columns 1-10, values in fields of
-!! ten columns from column 11) and, after SURFACE and PAIRS cards, data cards
-!! of node numbers or pairs.  Once the block is read, the pairs are built
-!! (contact_definition) and the interface constants converted to model units
-!! (contact_laws), so that every problem is reported with its deck line.
+!! ten columns from column 11) and, after SURFACE, PAIRS and RIGID POLYLINE
+!! cards, data cards of node numbers, pairs or vertices.  One reader routine
+!! per card (CalculiX style), dispatched from `read_contact`'s loop; each
+!! checks its own fields and stores what the card says in the model's contact
+!! specification (model/contact_spec), constants in the deck's units.  Nothing
+!! is built here: the pairs, areas and unit conversions come after reading
+!! (contact/contact_definition, called by driver/model_input), reported at
+!! the same deck lines.  A new card is a new `read_<card>` routine and one
+!! line in `read_contact_keyword`.
 module deck_contact
    use kinds, only: dp
-   use errors, only: error_list_t
    use strings, only: itoa, rtoa
    use deck_lexer, only: deck_t
    use model, only: model_t
-   use contact_types, only: LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, &
+   use contact_types, only: interface_t, contact_options_t, LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, &
                             FRICTION_COULOMB, FRICTION_FREDRIKSSON, UNITS_KGF_UM, UNITS_N_UM, &
                             UNITS_MODEL, UPDATE_EXPLICIT, UPDATE_RETURN, SLIP_IRREVERSIBLE, SLIP_GROSS, &
                             NEWCLOSED_SECANT, NEWCLOSED_TANGENT, &
                             MATCH_NODE, MATCH_SEGMENT, rigid_body_t, RIGID_POLYLINE, RIGID_CIRCLE
-   use contact_definition, only: iface_spec_t, define_contact
+   use contact_spec, only: contact_spec_t, iface_spec_t, surface_spec_t, pair_spec_t
    implicit none
    private
    public :: read_ties, read_contact
+
+   ! What the data cards of the CONTACT block belong to: set by the last keyword card.
+   integer, parameter :: DATA_NONE = 0       !! no data cards expected
+   integer, parameter :: DATA_SURFACE = 1    !! node numbers of a SURFACE
+   integer, parameter :: DATA_PAIRS = 2      !! explicit pairs after PAIRS
+   integer, parameter :: DATA_VERTICES = 3   !! vertices of a RIGID POLYLINE
+
+   !> Where the CONTACT reader is: the kind of data card expected next, and
+   !! for DATA_SURFACE the side (1 A, 2 B) of the current interface.
+   type :: contact_cursor_t
+      integer :: mode = DATA_NONE
+      integer :: iside = 0
+   end type contact_cursor_t
 
 contains
 
@@ -120,11 +137,13 @@ contains
 
    ! ------------------------------------------------------------------ CONTACT
 
-   subroutine read_contact(d, ickw, m, warnings, is_block_card)
+   !> CONTACT block: store every card in the model's contact specification
+   !! (`m%contact_spec`); it is complete when the block gave an interface and
+   !! raised no error.
+   subroutine read_contact(d, ickw, m, is_block_card)
       type(deck_t), intent(inout) :: d
-      integer, intent(in) :: ickw
-      type(model_t), intent(inout) :: m
-      type(error_list_t), intent(inout) :: warnings
+      integer, intent(in) :: ickw            !! the CONTACT keyword card
+      type(model_t), intent(inout) :: m      !! npoin used; contact_spec filled
       interface
          logical function is_block_card(d, ic)
             import :: deck_t
@@ -132,529 +151,735 @@ contains
             integer, intent(in) :: ic
          end function is_block_card
       end interface
-      type(iface_spec_t), allocatable :: spec(:)
-      type(rigid_body_t), allocatable :: rigids(:)
-      integer :: ic, nif, mode, iside, nerr0
-      character(len=:), allocatable :: key, w
-      logical :: ok
-      real(dp) :: v1, v2, v3, v4
-      integer :: iv
+      type(contact_cursor_t) :: cur
+      integer :: ic, nerr0
 
       nerr0 = d%errors%n
-      allocate (spec(0), rigids(0))
-      nif = 0
-      mode = 0          ! 0 none, 1 surface nodes, 2 pairs, 3 polyline vertices
+      associate (cs => m%contact_spec)
+         cs%given = .true.
+         cs%complete = .false.
+         cs%line = d%cards(ickw)%line
+         allocate (cs%ifaces(0), cs%rigids(0))
+         do while (.not. d%at_end())
+            if (is_block_card(d, d%peek())) exit
+            ic = d%next()
+            if (d%is_keyword_card(ic)) then
+               call read_contact_keyword(d, ic, m%npoin, cs, cur)
+            else
+               call read_contact_data(d, ic, m%npoin, cs, cur)
+            end if
+         end do
+         if (size(cs%ifaces) == 0) then
+            call d%error_at(ickw, 1, 'E-CONTACT', 'CONTACT: the block defines no interface (expected at least NORMAL, '// &
+                            'FRICTION and SURFACE or PAIRS cards)')
+            return
+         end if
+         cs%complete = d%errors%n == nerr0
+      end associate
+   end subroutine read_contact
+
+   !> A keyword card of CONTACT: open an interface where the card belongs to
+   !! one, then the card's own reader.
+   subroutine read_contact_keyword(d, ic, npoin, cs, cur)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic, npoin
+      type(contact_spec_t), intent(inout) :: cs
+      type(contact_cursor_t), intent(inout) :: cur
+      character(len=*), parameter :: iface_cards(12) = [character(len=10) :: 'LAW', 'UNITS', 'NORMAL', &
+                                     'TANGENT', 'FRICTION', 'HARDENING', 'SLIP', 'TOLERANCE', 'SURFACE', &
+                                     'PAIRS', 'MATCHING', 'RIGID']
+      character(len=:), allocatable :: key
+      logical :: ok
+      integer :: nif
+
+      ok = .true.
+      call d%get_word(ic, 1, 10, 'CONTACT', 'KEYWORD', key, ok)
+      cur%mode = DATA_NONE
+      ! cards of an interface before the first INTERFACE card open interface 1
+      if (key == 'INTERFACE' .or. (size(cs%ifaces) == 0 .and. any(key == iface_cards))) &
+         call new_interface(cs, d%cards(ic)%line)
+      nif = size(cs%ifaces)
+      select case (key)
+      case ('INTERFACE')
+         continue   ! opened above
+      case ('LAW')
+         call read_law(d, ic, cs%ifaces(nif)%law)
+      case ('UNITS')
+         call read_units(d, ic, cs%ifaces(nif)%law)
+      case ('NORMAL')
+         call read_normal(d, ic, cs%ifaces(nif))
+      case ('TANGENT')
+         call read_tangent(d, ic, cs%ifaces(nif)%law)
+      case ('FRICTION')
+         call read_friction(d, ic, cs%ifaces(nif))
+      case ('HARDENING')
+         call read_hardening(d, ic, cs%ifaces(nif)%law)
+      case ('SLIP')
+         call read_slip(d, ic, cs%ifaces(nif)%law)
+      case ('TOLERANCE')
+         call read_tolerance(d, ic, cs%ifaces(nif)%law)
+      case ('SURFACE')
+         call read_surface(d, ic, cs%ifaces(nif), cur)
+      case ('PAIRS')
+         cur%mode = DATA_PAIRS
+      case ('MATCHING')
+         call read_matching(d, ic, cs%ifaces(nif))
+      case ('RIGID')
+         call read_rigid(d, ic, npoin, cs, cur)
+      case ('AUGMENTED')
+         call read_augmented(d, ic, cs%opts)
+      case ('UPDATE', 'SCHEME')
+         call read_update(d, ic, key, cs%opts)
+      case ('CONVERGE')
+         call read_converge(d, ic, cs%opts)
+      case ('FIRSTINC')
+         call read_firstinc(d, ic, cs%opts)
+      case ('NEWCLOSED')
+         call read_newclosed(d, ic, cs%opts)
+      case ('REPEATS')
+         call read_repeats(d, ic, cs%opts)
+      case ('START')
+         call read_start(d, ic, cs%opts)
+      case default
+         call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT: unknown keyword "'//key//'" (expected INTERFACE, LAW, '// &
+                         'UNITS, NORMAL, TANGENT, FRICTION, HARDENING, SLIP, SURFACE, PAIRS, MATCHING, RIGID, '// &
+                         'TOLERANCE, SCHEME, UPDATE, CONVERGE, FIRSTINC, NEWCLOSED, REPEATS, START or AUGMENTED)')
+      end select
+   end subroutine read_contact_keyword
+
+   !> A data card of CONTACT: what it holds depends on the last keyword card.
+   subroutine read_contact_data(d, ic, npoin, cs, cur)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic, npoin
+      type(contact_spec_t), intent(inout) :: cs
+      type(contact_cursor_t), intent(in) :: cur
+      select case (cur%mode)
+      case (DATA_SURFACE)
+         call read_node_list(d, ic, npoin, cs%ifaces(size(cs%ifaces))%surf(cur%iside))
+      case (DATA_PAIRS)
+         call read_pair(d, ic, npoin, cs%ifaces(size(cs%ifaces)))
+      case (DATA_VERTICES)
+         call read_vertex(d, ic, cs%rigids(size(cs%rigids)))
+      case default
+         call d%error_at(ic, 1, 'E-CARD', 'CONTACT: a data card must follow a SURFACE, PAIRS or RIGID POLYLINE '// &
+                         'card, found "'// &
+                         trim(d%cards(ic)%text)//'"')
+      end select
+   end subroutine read_contact_data
+
+   !> INTERFACE card (or the first card of an interface): a new interface.
+   subroutine new_interface(cs, line)
+      type(contact_spec_t), intent(inout) :: cs
+      integer, intent(in) :: line          !! deck line of the card that opens it
+      type(iface_spec_t), allocatable :: tmp(:)
+      integer :: nif
+      nif = size(cs%ifaces)
+      allocate (tmp(nif + 1))
+      if (nif > 0) tmp(1:nif) = cs%ifaces(1:nif)
+      call move_alloc(tmp, cs%ifaces)
+      nif = nif + 1
+      cs%ifaces(nif)%line = line
+      cs%ifaces(nif)%law%line = line
+      allocate (cs%ifaces(nif)%pairs(0))
+   end subroutine new_interface
+
+   !> Anything past the last field of a CONTACT card is an error.
+   subroutine tail(d, ic, col, what, ok)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic, col
+      character(len=*), intent(in) :: what   !! the fields the card has
+      logical, intent(inout) :: ok
+      character(len=:), allocatable :: t
+      t = trim(adjustl(d%field_text(ic, col, 100000)))
+      if (len(t) > 0) then
+         call d%error_at(ic, col, 'E-EXTRA', 'CONTACT: expected '//what//', found more: "'//t//'"')
+         ok = .false.
+      end if
+   end subroutine tail
+
+   ! ------------------------------------------------------------------ CONTACT: the interface law
+
+   !> LAW: ROUGH or IDEAL (11-20).
+   subroutine read_law(d, ic, law)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(interface_t), intent(inout) :: law
+      character(len=:), allocatable :: w
+      logical :: ok
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/LAW', 'LAW', w, ok)
+      if (w == 'ROUGH') then
+         law%law = LAW_ROUGH
+      else if (w == 'IDEAL') then
+         law%law = LAW_IDEAL
+      else if (ok) then
+         call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/LAW (columns 11-20) expected ROUGH or IDEAL, found "'//w//'"')
+      end if
+   end subroutine read_law
+
+   !> UNITS: KGF_UM, N_UM or MODEL (11-20), the units of CN and R.
+   subroutine read_units(d, ic, law)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(interface_t), intent(inout) :: law
+      character(len=:), allocatable :: w
+      logical :: ok
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/UNITS', 'UNITS', w, ok)
+      select case (w)
+      case ('KGF_UM')
+         law%units = UNITS_KGF_UM
+      case ('N_UM')
+         law%units = UNITS_N_UM
+      case ('MODEL')
+         law%units = UNITS_MODEL
+      case default
+         if (ok) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/UNITS (columns 11-20) expected KGF_UM, N_UM '// &
+                                 'or MODEL, found "'//w//'"')
+      end select
+   end subroutine read_units
+
+   !> NORMAL: CN, M (loading) and CN2, M2 (unloading; default CN/2, M), in
+   !! the interface's UNITS.
+   subroutine read_normal(d, ic, s)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(iface_spec_t), intent(inout) :: s
+      real(dp) :: v1, v2, v3, v4
+      logical :: ok
+      ok = .true.
+      call d%get_real(ic, 11, 20, 'CONTACT/NORMAL', 'CN', v1, ok)
+      call d%get_real(ic, 21, 30, 'CONTACT/NORMAL', 'M', v2, ok)
+      call d%get_real(ic, 31, 40, 'CONTACT/NORMAL', 'CN2', v3, ok, default=-1.0_dp)
+      call d%get_real(ic, 41, 50, 'CONTACT/NORMAL', 'M2', v4, ok, default=-1.0_dp)
+      call tail(d, ic, 51, 'CN, M, CN2, M2 in columns 11-50', ok)
+      if (.not. ok) return
+      if (.not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/NORMAL: CN (columns 11-20) '// &
+                                               'expected a positive roughness constant c_n, found '//rtoa(v1))
+      if (.not. (v2 > 0.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/NORMAL: M (columns 21-30) '// &
+                                               'expected a positive exponent m, found '//rtoa(v2))
+      if (v3 < 0.0_dp) v3 = 0.5_dp*v1
+      if (v4 < 0.0_dp) v4 = v2
+      if (.not. (v3 > 0.0_dp)) call d%error_at(ic, 31, 'E-CONTACT', 'CONTACT/NORMAL: CN2 (columns 31-40) '// &
+                                               'expected a positive unloading constant, found '//rtoa(v3))
+      if (.not. (v4 > 0.0_dp)) call d%error_at(ic, 41, 'E-CONTACT', 'CONTACT/NORMAL: M2 (columns 41-50) '// &
+                                               'expected a positive unloading exponent, found '//rtoa(v4))
+      if (abs(v4 - v2) <= 1.0e-12_dp*v2 .and. v3 > v1) call d%error_at(ic, 31, 'E-CONTACT', &
+             'CONTACT/NORMAL: CN2 = '//rtoa(v3)//' > CN = '//rtoa(v1)//' with M2 = M: the unloading '// &
+             'branch would be softer than loading and the residual closure negative (SPEC 2.1)')
+      s%law%cn_in = v1
+      s%law%m_in = v2
+      s%law%cn2_in = v3
+      s%law%m2_in = v4
+      s%have_normal = .true.
+   end subroutine read_normal
+
+   !> TANGENT: R (11-20) and S (21-30); a blank field keeps the default
+   !! (R from eq. 2.8, S = 1 - m).
+   subroutine read_tangent(d, ic, law)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(interface_t), intent(inout) :: law
+      real(dp) :: v1, v2
+      logical :: ok
+      ok = .true.
+      call d%get_real(ic, 11, 20, 'CONTACT/TANGENT', 'R', v1, ok, default=-1.0_dp)
+      call d%get_real(ic, 21, 30, 'CONTACT/TANGENT', 'S', v2, ok, default=-1.0_dp)
+      call tail(d, ic, 31, 'R, S in columns 11-30', ok)
+      if (.not. ok) return
+      if (len_trim(d%field_text(ic, 11, 20)) > 0) then
+         if (.not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/TANGENT: R (columns 11-20) '// &
+                                                  'expected a positive constant, found '//rtoa(v1))
+         law%r_in = v1
+         law%r_given = .true.
+      end if
+      if (len_trim(d%field_text(ic, 21, 30)) > 0) then
+         if (v2 < 0.0_dp) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/TANGENT: S (columns 21-30) '// &
+                                          'expected an exponent >= 0, found '//rtoa(v2))
+         law%s_in = v2
+         law%s_given = .true.
+      end if
+   end subroutine read_tangent
+
+   !> FRICTION: NONE; COULOMB MU; or FREDRIKSSON MU_M BETA N (N in 1/length).
+   subroutine read_friction(d, ic, s)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(iface_spec_t), intent(inout) :: s
+      logical :: ok
+      character(len=:), allocatable :: kind
+      real(dp) :: mu, beta, rate
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/FRICTION', 'LAW', kind, ok)
+      if (.not. ok) return
+      ! FREDRIKSSON does not fit ten columns: any abbreviation of 4+ letters
+      if (len(kind) >= 4 .and. len(kind) <= 11) then
+         if (kind == 'FREDRIKSSON'(1:len(kind))) kind = 'FREDRIKSSON'
+      end if
+      select case (kind)
+      case ('NONE')
+         call tail(d, ic, 21, 'NONE alone', ok)
+         s%law%friction = FRICTION_NONE
+         s%law%mu_m = 0.0_dp
+      case ('COULOMB')
+         call d%get_real(ic, 21, 30, 'CONTACT/FRICTION', 'MU', mu, ok)
+         call tail(d, ic, 31, 'COULOMB and MU in columns 11-30', ok)
+         if (.not. ok) return
+         if (.not. (mu >= 0.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/FRICTION: MU (columns 21-30) '// &
+                                                   'expected a friction coefficient >= 0, found '//rtoa(mu))
+         s%law%friction = FRICTION_COULOMB
+         s%law%mu_m = mu
+         s%law%beta = 1.0_dp
+      case ('FREDRIKSSON')
+         call d%get_real(ic, 21, 30, 'CONTACT/FRICTION', 'MU_M', mu, ok)
+         call d%get_real(ic, 31, 40, 'CONTACT/FRICTION', 'BETA', beta, ok)
+         call d%get_real(ic, 41, 50, 'CONTACT/FRICTION', 'N', rate, ok)
+         call tail(d, ic, 51, 'FREDRIKSSON, MU_M, BETA, N in columns 11-50', ok)
+         if (.not. ok) return
+         if (.not. (mu >= 0.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/FRICTION: MU_M (columns 21-30) '// &
+                                                   'expected a friction coefficient >= 0, found '//rtoa(mu))
+         if (.not. (beta > 0.0_dp .and. beta <= 1.0_dp)) call d%error_at(ic, 31, 'E-CONTACT', &
+                      'CONTACT/FRICTION: BETA (columns 31-40) expected the initial fraction of mu_m in (0, 1], found '// &
+                      rtoa(beta))
+         if (.not. (rate >= 0.0_dp)) call d%error_at(ic, 41, 'E-CONTACT', 'CONTACT/FRICTION: N (columns 41-50) '// &
+                                                     'expected a hardening rate >= 0 (1/length), found '//rtoa(rate))
+         s%law%friction = FRICTION_FREDRIKSSON
+         s%law%mu_m = mu
+         s%law%beta = beta
+         s%law%n_hard = rate
+      case default
+         call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/FRICTION (columns 11-20) expected NONE, COULOMB or '// &
+                         'FREDRIKSSON, found "'//kind//'"')
+         return
+      end select
+      s%have_friction = .true.
+   end subroutine read_friction
+
+   !> HARDENING: ON or OFF (11-20) and KAPPA = k_T^p / k_T^e (21-30).
+   subroutine read_hardening(d, ic, law)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(interface_t), intent(inout) :: law
+      character(len=:), allocatable :: w
+      real(dp) :: v1
+      logical :: ok
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/HARDENING', 'ON/OFF', w, ok)
+      call d%get_real(ic, 21, 30, 'CONTACT/HARDENING', 'KAPPA', v1, ok, default=0.045_dp)
+      call tail(d, ic, 31, 'ON or OFF and KAPPA in columns 11-30', ok)
+      if (.not. ok) return
+      if (w == 'ON') then
+         law%hardening = .true.
+      else if (w == 'OFF') then
+         law%hardening = .false.
+      else
+         call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/HARDENING (columns 11-20) expected ON or OFF, found "'// &
+                         w//'"')
+      end if
+      if (.not. (v1 > 0.0_dp .and. v1 <= 1.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', &
+                   'CONTACT/HARDENING: KAPPA (columns 21-30) expected a ratio k_T^p/k_T^e in (0, 1], found '// &
+                   rtoa(v1))
+      law%kappa = v1
+   end subroutine read_hardening
+
+   !> SLIP: IRREVERSIBLE or GROSS (11-20), what the effective slip v_e counts.
+   subroutine read_slip(d, ic, law)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(interface_t), intent(inout) :: law
+      character(len=:), allocatable :: w
+      logical :: ok
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/SLIP', 'DEFINITION', w, ok)
+      if (w == 'IRREVERSIBLE') then
+         law%slip_def = SLIP_IRREVERSIBLE
+      else if (w == 'GROSS') then
+         law%slip_def = SLIP_GROSS
+      else if (ok) then
+         call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/SLIP (columns 11-20) expected IRREVERSIBLE or GROSS, '// &
+                         'found "'//w//'"')
+      end if
+   end subroutine read_slip
+
+   !> TOLERANCE: the pairing tolerance TOL (11-20) [model length].
+   subroutine read_tolerance(d, ic, law)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(interface_t), intent(inout) :: law
+      real(dp) :: v1
+      logical :: ok
+      ok = .true.
+      call d%get_real(ic, 11, 20, 'CONTACT/TOLERANCE', 'TOL', v1, ok)
+      if (ok .and. .not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/TOLERANCE (columns 11-20) '// &
+                                                        'expected a positive distance, found '//rtoa(v1))
+      if (ok) law%tol = v1
+   end subroutine read_tolerance
+
+   ! ------------------------------------------------------------------ CONTACT: surfaces, pairs, rigid bodies
+
+   !> SURFACE: side A or B (11-20), then a set name (21-) or node numbers on
+   !! the data cards that follow.
+   subroutine read_surface(d, ic, s, cur)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(iface_spec_t), intent(inout) :: s
+      type(contact_cursor_t), intent(inout) :: cur
+      character(len=:), allocatable :: w
+      logical :: ok
+      integer :: iside
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/SURFACE', 'SIDE', w, ok)
       iside = 0
-      do while (.not. d%at_end())
-         if (is_block_card(d, d%peek())) exit
-         ic = d%next()
-         if (.not. d%is_keyword_card(ic)) then
-            select case (mode)
-            case (1)
-               call read_node_list(ic)
-            case (2)
-               call read_pair(ic)
-            case (3)
-               call read_vertex(ic)
-            case default
-               call d%error_at(ic, 1, 'E-CARD', 'CONTACT: a data card must follow a SURFACE, PAIRS or RIGID POLYLINE '// &
-                               'card, found "'// &
-                               trim(d%cards(ic)%text)//'"')
-            end select
+      if (w == 'A') iside = 1
+      if (w == 'B') iside = 2
+      cur%iside = iside
+      if (ok .and. iside == 0) then
+         call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/SURFACE (columns 11-20) expected side A (upper body) '// &
+                         'or B (lower body), found "'//w//'"')
+      else if (ok) then
+         if (s%surf(iside)%given) then
+            call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT/SURFACE: surface '//w//' of this interface is given twice')
+         end if
+         s%surf(iside)%given = .true.
+         s%surf(iside)%line = d%cards(ic)%line
+         if (.not. allocated(s%surf(iside)%nodes)) allocate (s%surf(iside)%nodes(0))
+         w = trim(adjustl(d%field_text(ic, 21, 100000)))
+         if (len(w) > 0) then
+            s%surf(iside)%set_name = w
+         else
+            cur%mode = DATA_SURFACE
+         end if
+      end if
+   end subroutine read_surface
+
+   !> A data card of a SURFACE: up to 16 node numbers, I5 each.
+   subroutine read_node_list(d, ic, npoin, surf)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic, npoin
+      type(surface_spec_t), intent(inout) :: surf
+      integer :: k, c1, node
+      logical :: ok
+      ok = .true.
+      do k = 1, 16
+         c1 = 1 + 5*(k - 1)
+         if (len_trim(d%field_text(ic, c1, c1 + 4)) == 0) cycle
+         call d%get_int(ic, c1, c1 + 4, 'CONTACT/SURFACE', 'NODE'//itoa(k), node, ok)
+         if (.not. ok) return
+         if (node < 1 .or. node > npoin) then
+            call d%error_at(ic, c1, 'E-RANGE', 'CONTACT/SURFACE: node number (columns '//itoa(c1)//'-'// &
+                            itoa(c1 + 4)//') expected 1..'//itoa(npoin)//', found '//itoa(node))
             cycle
          end if
-         ok = .true.
-         call d%get_word(ic, 1, 10, 'CONTACT', 'KEYWORD', key, ok)
-         mode = 0
-         select case (key)
-         case ('INTERFACE')
-            call new_interface(ic)
-         case ('LAW')
-            call need_interface(ic)
-            call d%get_word(ic, 11, 20, 'CONTACT/LAW', 'LAW', w, ok)
-            if (w == 'ROUGH') then
-               spec(nif)%law%law = LAW_ROUGH
-            else if (w == 'IDEAL') then
-               spec(nif)%law%law = LAW_IDEAL
-            else if (ok) then
-               call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/LAW (columns 11-20) expected ROUGH or IDEAL, found "'//w//'"')
-            end if
-         case ('UNITS')
-            call need_interface(ic)
-            call d%get_word(ic, 11, 20, 'CONTACT/UNITS', 'UNITS', w, ok)
-            select case (w)
-            case ('KGF_UM')
-               spec(nif)%law%units = UNITS_KGF_UM
-            case ('N_UM')
-               spec(nif)%law%units = UNITS_N_UM
-            case ('MODEL')
-               spec(nif)%law%units = UNITS_MODEL
-            case default
-               if (ok) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/UNITS (columns 11-20) expected KGF_UM, N_UM '// &
-                                       'or MODEL, found "'//w//'"')
-            end select
-         case ('NORMAL')
-            call need_interface(ic)
-            call d%get_real(ic, 11, 20, 'CONTACT/NORMAL', 'CN', v1, ok)
-            call d%get_real(ic, 21, 30, 'CONTACT/NORMAL', 'M', v2, ok)
-            call d%get_real(ic, 31, 40, 'CONTACT/NORMAL', 'CN2', v3, ok, default=-1.0_dp)
-            call d%get_real(ic, 41, 50, 'CONTACT/NORMAL', 'M2', v4, ok, default=-1.0_dp)
-            call tail(ic, 51, 'CN, M, CN2, M2 in columns 11-50', ok)
-            if (ok) then
-               if (.not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/NORMAL: CN (columns 11-20) '// &
-                                                        'expected a positive roughness constant c_n, found '//rtoa(v1))
-               if (.not. (v2 > 0.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/NORMAL: M (columns 21-30) '// &
-                                                        'expected a positive exponent m, found '//rtoa(v2))
-               if (v3 < 0.0_dp) v3 = 0.5_dp*v1
-               if (v4 < 0.0_dp) v4 = v2
-               if (.not. (v3 > 0.0_dp)) call d%error_at(ic, 31, 'E-CONTACT', 'CONTACT/NORMAL: CN2 (columns 31-40) '// &
-                                                        'expected a positive unloading constant, found '//rtoa(v3))
-               if (.not. (v4 > 0.0_dp)) call d%error_at(ic, 41, 'E-CONTACT', 'CONTACT/NORMAL: M2 (columns 41-50) '// &
-                                                        'expected a positive unloading exponent, found '//rtoa(v4))
-               if (abs(v4 - v2) <= 1.0e-12_dp*v2 .and. v3 > v1) call d%error_at(ic, 31, 'E-CONTACT', &
-                      'CONTACT/NORMAL: CN2 = '//rtoa(v3)//' > CN = '//rtoa(v1)//' with M2 = M: the unloading '// &
-                      'branch would be softer than loading and the residual closure negative (SPEC 2.1)')
-               spec(nif)%law%cn_in = v1
-               spec(nif)%law%m_in = v2
-               spec(nif)%law%cn2_in = v3
-               spec(nif)%law%m2_in = v4
-               spec(nif)%have_normal = .true.
-            end if
-         case ('TANGENT')
-            call need_interface(ic)
-            call d%get_real(ic, 11, 20, 'CONTACT/TANGENT', 'R', v1, ok, default=-1.0_dp)
-            call d%get_real(ic, 21, 30, 'CONTACT/TANGENT', 'S', v2, ok, default=-1.0_dp)
-            call tail(ic, 31, 'R, S in columns 11-30', ok)
-            if (ok) then
-               if (len_trim(d%field_text(ic, 11, 20)) > 0) then
-                  if (.not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/TANGENT: R (columns 11-20) '// &
-                                                           'expected a positive constant, found '//rtoa(v1))
-                  spec(nif)%law%r_in = v1
-                  spec(nif)%law%r_given = .true.
-               end if
-               if (len_trim(d%field_text(ic, 21, 30)) > 0) then
-                  if (v2 < 0.0_dp) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/TANGENT: S (columns 21-30) '// &
-                                                   'expected an exponent >= 0, found '//rtoa(v2))
-                  spec(nif)%law%s_in = v2
-                  spec(nif)%law%s_given = .true.
-               end if
-            end if
-         case ('FRICTION')
-            call need_interface(ic)
-            call read_friction(ic)
-         case ('HARDENING')
-            call need_interface(ic)
-            call d%get_word(ic, 11, 20, 'CONTACT/HARDENING', 'ON/OFF', w, ok)
-            call d%get_real(ic, 21, 30, 'CONTACT/HARDENING', 'KAPPA', v1, ok, default=0.045_dp)
-            call tail(ic, 31, 'ON or OFF and KAPPA in columns 11-30', ok)
-            if (ok) then
-               if (w == 'ON') then
-                  spec(nif)%law%hardening = .true.
-               else if (w == 'OFF') then
-                  spec(nif)%law%hardening = .false.
-               else
-                  call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/HARDENING (columns 11-20) expected ON or OFF, found "'// &
-                                  w//'"')
-               end if
-               if (.not. (v1 > 0.0_dp .and. v1 <= 1.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', &
-                            'CONTACT/HARDENING: KAPPA (columns 21-30) expected a ratio k_T^p/k_T^e in (0, 1], found '// &
-                            rtoa(v1))
-               spec(nif)%law%kappa = v1
-            end if
-         case ('SLIP')
-            call need_interface(ic)
-            call d%get_word(ic, 11, 20, 'CONTACT/SLIP', 'DEFINITION', w, ok)
-            if (w == 'IRREVERSIBLE') then
-               spec(nif)%law%slip_def = SLIP_IRREVERSIBLE
-            else if (w == 'GROSS') then
-               spec(nif)%law%slip_def = SLIP_GROSS
-            else if (ok) then
-               call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/SLIP (columns 11-20) expected IRREVERSIBLE or GROSS, '// &
-                               'found "'//w//'"')
-            end if
-         case ('TOLERANCE')
-            call need_interface(ic)
-            call d%get_real(ic, 11, 20, 'CONTACT/TOLERANCE', 'TOL', v1, ok)
-            if (ok .and. .not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/TOLERANCE (columns 11-20) '// &
-                                                              'expected a positive distance, found '//rtoa(v1))
-            if (ok) spec(nif)%law%tol = v1
-         case ('SURFACE')
-            call need_interface(ic)
-            call d%get_word(ic, 11, 20, 'CONTACT/SURFACE', 'SIDE', w, ok)
-            iside = 0
-            if (w == 'A') iside = 1
-            if (w == 'B') iside = 2
-            if (ok .and. iside == 0) then
-               call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/SURFACE (columns 11-20) expected side A (upper body) '// &
-                               'or B (lower body), found "'//w//'"')
-            else if (ok) then
-               if (spec(nif)%surf(iside)%given) then
-                  call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT/SURFACE: surface '//w//' of this interface is given twice')
-               end if
-               spec(nif)%surf(iside)%given = .true.
-               spec(nif)%surf(iside)%line = d%cards(ic)%line
-               if (.not. allocated(spec(nif)%surf(iside)%nodes)) allocate (spec(nif)%surf(iside)%nodes(0))
-               w = trim(adjustl(d%field_text(ic, 21, 100000)))
-               if (len(w) > 0) then
-                  spec(nif)%surf(iside)%set_name = w
-               else
-                  mode = 1
-               end if
-            end if
-         case ('PAIRS')
-            call need_interface(ic)
-            mode = 2
-         case ('MATCHING')
-            call need_interface(ic)
-            call d%get_word(ic, 11, 20, 'CONTACT/MATCHING', 'MATCHING', w, ok)
-            call tail(ic, 21, 'NODE or SEGMENT in columns 11-20', ok)
-            if (ok) then
-               if (w == 'NODE') then
-                  spec(nif)%law%matching = MATCH_NODE
-               else if (w == 'SEGMENT') then
-                  spec(nif)%law%matching = MATCH_SEGMENT
-               else
-                  call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/MATCHING (columns 11-20) expected NODE '// &
-                                  '(node-to-node pairs) or SEGMENT (nodes of A against edges of B), found "'//w//'"')
-               end if
-               if (spec(nif)%have_matching) call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT/MATCHING: given twice '// &
-                                                            'for this interface')
-               spec(nif)%have_matching = .true.
-               spec(nif)%matching_line = d%cards(ic)%line
-            end if
-         case ('RIGID')
-            call need_interface(ic)
-            call read_rigid(ic)
-         case ('AUGMENTED')
-            call d%get_real(ic, 11, 20, 'CONTACT/AUGMENTED', 'FACTOR', v1, ok, default=100.0_dp)
-            call d%get_real(ic, 21, 30, 'CONTACT/AUGMENTED', 'TOL', v2, ok, default=1.0e-6_dp)
-            call tail(ic, 31, 'FACTOR and TOL in columns 11-30', ok)
-            if (ok) then
-               if (.not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/AUGMENTED: FACTOR (columns '// &
-                                                        '11-20) expected a positive penalty factor, found '//rtoa(v1))
-               if (.not. (v2 > 0.0_dp .and. v2 < 1.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/AUGMENTED: '// &
-                            'TOL (columns 21-30) expected a tolerance in (0, 1) relative to the smallest contact '// &
-                            'element, found '//rtoa(v2))
-               m%contact%opts%aug_factor = v1
-               m%contact%opts%aug_tol = v2
-            end if
-         case ('UPDATE', 'SCHEME')
-            ! SCHEME INCREMENTAL (the paper) = UPDATE EXPLICIT; SCHEME NEWTON = UPDATE RETURN;
-            ! SCHEME MODIFIED = RETURN with the stiffness kept (modified Newton)
-            call d%get_word(ic, 11, 20, 'CONTACT/'//key, key, w, ok)
-            select case (w)
-            case ('EXPLICIT', 'INCREMENTA')
-               m%contact%opts%update = UPDATE_EXPLICIT
-               m%contact%opts%modified = .false.
-            case ('RETURN', 'NEWTON')
-               m%contact%opts%update = UPDATE_RETURN
-               m%contact%opts%modified = .false.
-            case ('MODIFIED')
-               m%contact%opts%update = UPDATE_RETURN
-               m%contact%opts%modified = .true.
-            case default
-               if (ok) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/'//key//' (columns 11-20) expected '// &
-                                       'INCREMENTAL (or EXPLICIT), NEWTON (or RETURN) or MODIFIED, found "'//w//'"')
-            end select
-         case ('CONVERGE')
-            call d%get_real(ic, 11, 20, 'CONTACT/CONVERGE', 'TOLR', v1, ok, default=1.0e-10_dp)
-            call d%get_real(ic, 21, 30, 'CONTACT/CONVERGE', 'TOLU', v2, ok, default=1.0e-8_dp)
-            call tail(ic, 31, 'TOLR, TOLU in columns 11-30', ok)
-            if (ok .and. .not. (v1 > 0.0_dp .and. v1 < 1.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', &
-                   'CONTACT/CONVERGE: TOLR (columns 11-20) expected a relative force tolerance in (0, 1), found '//rtoa(v1))
-            if (ok .and. .not. (v2 > 0.0_dp .and. v2 < 1.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', &
-                   'CONTACT/CONVERGE: TOLU (columns 21-30) expected a relative displacement tolerance in (0, 1), found '// &
-                   rtoa(v2))
-            if (ok) then
-               m%contact%opts%tol_residual = v1
-               m%contact%opts%tol_displacement = v2
-            end if
-         case ('FIRSTINC')
-            call d%get_word(ic, 11, 20, 'CONTACT/FIRSTINC', 'RULE', w, ok)
-            if (w == 'SECANT') then
-               m%contact%opts%first_iterate = .false.
-            else if (w == 'ITERATE') then
-               m%contact%opts%first_iterate = .true.
-            else if (ok) then
-               call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/FIRSTINC (columns 11-20) expected SECANT or ITERATE, '// &
-                               'found "'//w//'"')
-            end if
-         case ('NEWCLOSED')
-            call d%get_word(ic, 11, 20, 'CONTACT/NEWCLOSED', 'RULE', w, ok)
-            call d%get_real(ic, 21, 30, 'CONTACT/NEWCLOSED', 'PMIN', v1, ok, default=1.0e-3_dp)
-            call tail(ic, 31, 'SECANT or TANGENT and PMIN in columns 11-30', ok)
-            if (ok .and. w == 'SECANT') then
-               m%contact%opts%newly_closed = NEWCLOSED_SECANT
-            else if (ok .and. w == 'TANGENT') then
-               m%contact%opts%newly_closed = NEWCLOSED_TANGENT
-            else if (ok) then
-               call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/NEWCLOSED (columns 11-20) expected SECANT or TANGENT, '// &
-                               'found "'//w//'"')
-            end if
-            if (ok .and. .not. (v1 > 0.0_dp .and. v1 < 1.0_dp)) then
-               call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/NEWCLOSED: PMIN (columns 21-30) expected the floor '// &
-                               'pressure as a fraction of p_m in (0, 1), found '//rtoa(v1))
-            else if (ok) then
-               m%contact%opts%p_min_ratio = v1
-            end if
-         case ('REPEATS')
-            call d%get_int(ic, 11, 20, 'CONTACT/REPEATS', 'MAXREP', iv, ok)
-            if (ok .and. (iv < 1 .or. iv > 10000)) then
-               call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/REPEATS (columns 11-20) expected 1..10000, found '//itoa(iv))
-            else if (ok) then
-               m%contact%opts%max_repeats = iv
-               m%contact%opts%repeats_given = .true.
-            end if
-         case ('START')
-            call d%get_real(ic, 11, 20, 'CONTACT/START', 'PM', v1, ok, default=-1.0_dp)
-            call d%get_int(ic, 21, 30, 'CONTACT/START', 'NSTART', iv, ok, default=0)
-            call d%get_real(ic, 31, 40, 'CONTACT/START', 'GAPTOL', v2, ok, default=-1.0_dp)
-            call tail(ic, 41, 'PM, NSTART, GAPTOL in columns 11-40', ok)
-            if (ok) then
-               if (len_trim(d%field_text(ic, 11, 20)) > 0 .and. .not. (v1 > 0.0_dp)) call d%error_at(ic, 11, &
-                            'E-CONTACT', 'CONTACT/START: PM (columns 11-20) expected a positive starting pressure, '// &
-                            'found '//rtoa(v1))
-               if (iv < 0) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/START: NSTART (columns 21-30) expected a '// &
-                                           'number of pairs >= 0, found '//itoa(iv))
-               m%contact%opts%p_start = v1
-               m%contact%opts%n_start = iv
-               m%contact%opts%gap_tol = v2
-            end if
-         case default
-            call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT: unknown keyword "'//key//'" (expected INTERFACE, LAW, '// &
-                            'UNITS, NORMAL, TANGENT, FRICTION, HARDENING, SLIP, SURFACE, PAIRS, MATCHING, RIGID, '// &
-                            'TOLERANCE, SCHEME, UPDATE, CONVERGE, FIRSTINC, NEWCLOSED, REPEATS, START or AUGMENTED)')
-         end select
+         surf%nodes = [surf%nodes, node]
       end do
+      if (len_trim(d%field_text(ic, 81, 100000)) > 0) call d%error_at(ic, 81, 'E-EXTRA', &
+                                                'CONTACT/SURFACE: at most 16 node numbers per card (columns 1-80)')
+   end subroutine read_node_list
 
-      if (nif == 0) then
-         call d%error_at(ickw, 1, 'E-CONTACT', 'CONTACT: the block defines no interface (expected at least NORMAL, '// &
-                         'FRICTION and SURFACE or PAIRS cards)')
+   !> A data card of PAIRS: NODEA, NODEB, G0, ALPHA (degrees), AREA.
+   subroutine read_pair(d, ic, npoin, s)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic, npoin
+      type(iface_spec_t), intent(inout) :: s
+      type(pair_spec_t) :: p
+      integer :: na, nb
+      real(dp) :: g0, alpha, area
+      logical :: ok
+      ok = .true.
+      call d%get_int(ic, 1, 5, 'CONTACT/PAIRS', 'NODEA', na, ok)
+      call d%get_int(ic, 6, 10, 'CONTACT/PAIRS', 'NODEB', nb, ok)
+      call d%get_real(ic, 11, 20, 'CONTACT/PAIRS', 'G0', g0, ok, default=0.0_dp)
+      call d%get_real(ic, 21, 30, 'CONTACT/PAIRS', 'ALPHA', alpha, ok, default=0.0_dp)
+      call d%get_real(ic, 31, 40, 'CONTACT/PAIRS', 'AREA', area, ok, default=0.0_dp)
+      call tail(d, ic, 41, 'NODEA, NODEB, G0, ALPHA, AREA in columns 1-40', ok)
+      if (.not. ok) return
+      if (na < 1 .or. na > npoin .or. nb < 1 .or. nb > npoin) then
+         call d%error_at(ic, 1, 'E-RANGE', 'CONTACT/PAIRS: node numbers (columns 1-10) expected 1..'// &
+                         itoa(npoin)//', found '//itoa(na)//' and '//itoa(nb))
          return
       end if
-      if (d%errors%n > nerr0) return
-      m%contact%rigids = rigids
-      call define_contact(m, spec, d%file, d%errors, warnings)
-   contains
-      !> RIGID card: SHAPE (11-20), NREF (21-30), then FLAT X1 Y1 X2 Y2 or
-      !! CIRCLE XC YC R (31-70); POLYLINE takes its vertices from data cards.
-      subroutine read_rigid(icard)
-         integer, intent(in) :: icard
-         character(len=:), allocatable :: shape
-         integer :: nref
-         real(dp) :: x(4)
-         logical :: okr
-         type(rigid_body_t) :: rb
-         okr = .true.
-         if (spec(nif)%law%rigid > 0) then
-            call d%error_at(icard, 1, 'E-RIGID', 'CONTACT/RIGID: this interface already has a rigid body '// &
-                            '(one RIGID card per interface; start another INTERFACE)')
+      if (len_trim(d%field_text(ic, 31, 40)) > 0 .and. .not. (area > 0.0_dp)) then
+         call d%error_at(ic, 31, 'E-CONTACT', 'CONTACT/PAIRS: AREA (columns 31-40) expected a positive area, '// &
+                         'found '//rtoa(area))
+         return
+      end if
+      p = pair_spec_t(node_a=na, node_b=nb, g0=g0, alpha=alpha, area=area, &
+                      has_g0=len_trim(d%field_text(ic, 11, 20)) > 0, &
+                      has_alpha=len_trim(d%field_text(ic, 21, 30)) > 0, &
+                      has_area=len_trim(d%field_text(ic, 31, 40)) > 0, line=d%cards(ic)%line)
+      s%pairs = [s%pairs, p]
+   end subroutine read_pair
+
+   !> MATCHING: NODE (node-to-node pairs) or SEGMENT (nodes of A against edges of B).
+   subroutine read_matching(d, ic, s)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(iface_spec_t), intent(inout) :: s
+      character(len=:), allocatable :: w
+      logical :: ok
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/MATCHING', 'MATCHING', w, ok)
+      call tail(d, ic, 21, 'NODE or SEGMENT in columns 11-20', ok)
+      if (.not. ok) return
+      if (w == 'NODE') then
+         s%law%matching = MATCH_NODE
+      else if (w == 'SEGMENT') then
+         s%law%matching = MATCH_SEGMENT
+      else
+         call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/MATCHING (columns 11-20) expected NODE '// &
+                         '(node-to-node pairs) or SEGMENT (nodes of A against edges of B), found "'//w//'"')
+      end if
+      if (s%have_matching) call d%error_at(ic, 1, 'E-CONTACT', 'CONTACT/MATCHING: given twice '// &
+                                           'for this interface')
+      s%have_matching = .true.
+      s%matching_line = d%cards(ic)%line
+   end subroutine read_matching
+
+   !> RIGID: SHAPE (11-20), NREF (21-30), then FLAT X1 Y1 X2 Y2 or CIRCLE XC
+   !! YC R (31-70) [model length]; POLYLINE takes its vertices from data cards.
+   !! The body becomes side B of the current interface.
+   subroutine read_rigid(d, ic, npoin, cs, cur)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic, npoin
+      type(contact_spec_t), intent(inout) :: cs
+      type(contact_cursor_t), intent(inout) :: cur
+      character(len=:), allocatable :: shape
+      integer :: nref, nif
+      real(dp) :: x(4)
+      logical :: ok
+      type(rigid_body_t) :: rb
+      ok = .true.
+      nif = size(cs%ifaces)
+      if (cs%ifaces(nif)%law%rigid > 0) then
+         call d%error_at(ic, 1, 'E-RIGID', 'CONTACT/RIGID: this interface already has a rigid body '// &
+                         '(one RIGID card per interface; start another INTERFACE)')
+         return
+      end if
+      call d%get_word(ic, 11, 20, 'CONTACT/RIGID', 'SHAPE', shape, ok)
+      call d%get_int(ic, 21, 30, 'CONTACT/RIGID', 'NREF', nref, ok)
+      if (.not. ok) return
+      if (nref < 1 .or. nref > npoin) then
+         call d%error_at(ic, 21, 'E-RANGE', 'CONTACT/RIGID: NREF (columns 21-30) expected the reference node '// &
+                         '1..'//itoa(npoin)//', found '//itoa(nref))
+         return
+      end if
+      rb%node = nref
+      rb%line = d%cards(ic)%line
+      select case (shape)
+      case ('FLAT')
+         call d%get_real(ic, 31, 40, 'CONTACT/RIGID', 'X1', x(1), ok)
+         call d%get_real(ic, 41, 50, 'CONTACT/RIGID', 'Y1', x(2), ok)
+         call d%get_real(ic, 51, 60, 'CONTACT/RIGID', 'X2', x(3), ok)
+         call d%get_real(ic, 61, 70, 'CONTACT/RIGID', 'Y2', x(4), ok)
+         call tail(d, ic, 71, 'FLAT, NREF, X1, Y1, X2, Y2 in columns 11-70', ok)
+         if (.not. ok) return
+         rb%shape = RIGID_POLYLINE
+         rb%xy = reshape(x, [2, 2])
+      case ('CIRCLE')
+         call d%get_real(ic, 31, 40, 'CONTACT/RIGID', 'XC', x(1), ok)
+         call d%get_real(ic, 41, 50, 'CONTACT/RIGID', 'YC', x(2), ok)
+         call d%get_real(ic, 51, 60, 'CONTACT/RIGID', 'R', x(3), ok)
+         call tail(d, ic, 61, 'CIRCLE, NREF, XC, YC, R in columns 11-60', ok)
+         if (.not. ok) return
+         if (.not. (x(3) > 0.0_dp)) then
+            call d%error_at(ic, 51, 'E-RIGID', 'CONTACT/RIGID: R (columns 51-60) expected a positive radius, '// &
+                            'found '//rtoa(x(3)))
             return
          end if
-         call d%get_word(icard, 11, 20, 'CONTACT/RIGID', 'SHAPE', shape, okr)
-         call d%get_int(icard, 21, 30, 'CONTACT/RIGID', 'NREF', nref, okr)
-         if (.not. okr) return
-         if (nref < 1 .or. nref > m%npoin) then
-            call d%error_at(icard, 21, 'E-RANGE', 'CONTACT/RIGID: NREF (columns 21-30) expected the reference node '// &
-                            '1..'//itoa(m%npoin)//', found '//itoa(nref))
-            return
-         end if
-         rb%node = nref
-         rb%line = d%cards(icard)%line
-         select case (shape)
-         case ('FLAT')
-            call d%get_real(icard, 31, 40, 'CONTACT/RIGID', 'X1', x(1), okr)
-            call d%get_real(icard, 41, 50, 'CONTACT/RIGID', 'Y1', x(2), okr)
-            call d%get_real(icard, 51, 60, 'CONTACT/RIGID', 'X2', x(3), okr)
-            call d%get_real(icard, 61, 70, 'CONTACT/RIGID', 'Y2', x(4), okr)
-            call tail(icard, 71, 'FLAT, NREF, X1, Y1, X2, Y2 in columns 11-70', okr)
-            if (.not. okr) return
-            rb%shape = RIGID_POLYLINE
-            rb%xy = reshape(x, [2, 2])
-         case ('CIRCLE')
-            call d%get_real(icard, 31, 40, 'CONTACT/RIGID', 'XC', x(1), okr)
-            call d%get_real(icard, 41, 50, 'CONTACT/RIGID', 'YC', x(2), okr)
-            call d%get_real(icard, 51, 60, 'CONTACT/RIGID', 'R', x(3), okr)
-            call tail(icard, 61, 'CIRCLE, NREF, XC, YC, R in columns 11-60', okr)
-            if (.not. okr) return
-            if (.not. (x(3) > 0.0_dp)) then
-               call d%error_at(icard, 51, 'E-RIGID', 'CONTACT/RIGID: R (columns 51-60) expected a positive radius, '// &
-                               'found '//rtoa(x(3)))
-               return
-            end if
-            rb%shape = RIGID_CIRCLE
-            rb%centre = x(1:2)
-            rb%radius = x(3)
-            allocate (rb%xy(2, 0))
-         case ('POLYLINE')
-            call tail(icard, 31, 'POLYLINE and NREF in columns 11-30 (the vertices follow on data cards)', okr)
-            if (.not. okr) return
-            rb%shape = RIGID_POLYLINE
-            allocate (rb%xy(2, 0))
-            mode = 3
-         case default
-            call d%error_at(icard, 11, 'E-RIGID', 'CONTACT/RIGID: SHAPE (columns 11-20) expected FLAT, CIRCLE or '// &
-                            'POLYLINE, found "'//shape//'"')
-            return
-         end select
-         rigids = [rigids, rb]
-         spec(nif)%law%rigid = size(rigids)
-      end subroutine read_rigid
+         rb%shape = RIGID_CIRCLE
+         rb%centre = x(1:2)
+         rb%radius = x(3)
+         allocate (rb%xy(2, 0))
+      case ('POLYLINE')
+         call tail(d, ic, 31, 'POLYLINE and NREF in columns 11-30 (the vertices follow on data cards)', ok)
+         if (.not. ok) return
+         rb%shape = RIGID_POLYLINE
+         allocate (rb%xy(2, 0))
+         cur%mode = DATA_VERTICES
+      case default
+         call d%error_at(ic, 11, 'E-RIGID', 'CONTACT/RIGID: SHAPE (columns 11-20) expected FLAT, CIRCLE or '// &
+                         'POLYLINE, found "'//shape//'"')
+         return
+      end select
+      cs%rigids = [cs%rigids, rb]
+      cs%ifaces(nif)%law%rigid = size(cs%rigids)
+   end subroutine read_rigid
 
-      !> A vertex of a POLYLINE profile: X (1-10), Y (11-20).
-      subroutine read_vertex(icard)
-         integer, intent(in) :: icard
-         real(dp) :: x, y
-         logical :: okv
-         integer :: k
-         okv = .true.
-         call d%get_real(icard, 1, 10, 'CONTACT/RIGID', 'X', x, okv)
-         call d%get_real(icard, 11, 20, 'CONTACT/RIGID', 'Y', y, okv)
-         call tail(icard, 21, 'X, Y of a vertex in columns 1-20', okv)
-         if (.not. okv) return
-         k = size(rigids)
-         rigids(k)%xy = reshape([reshape(rigids(k)%xy, [size(rigids(k)%xy)]), x, y], [2, size(rigids(k)%xy, 2) + 1])
-      end subroutine read_vertex
+   !> A vertex of a POLYLINE profile: X (1-10), Y (11-20) [model length].
+   subroutine read_vertex(d, ic, rb)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(rigid_body_t), intent(inout) :: rb
+      real(dp) :: x, y
+      logical :: ok
+      ok = .true.
+      call d%get_real(ic, 1, 10, 'CONTACT/RIGID', 'X', x, ok)
+      call d%get_real(ic, 11, 20, 'CONTACT/RIGID', 'Y', y, ok)
+      call tail(d, ic, 21, 'X, Y of a vertex in columns 1-20', ok)
+      if (.not. ok) return
+      rb%xy = reshape([reshape(rb%xy, [size(rb%xy)]), x, y], [2, size(rb%xy, 2) + 1])
+   end subroutine read_vertex
 
-      subroutine new_interface(icard)
-         integer, intent(in) :: icard
-         type(iface_spec_t), allocatable :: tmp(:)
-         allocate (tmp(nif + 1))
-         if (nif > 0) tmp(1:nif) = spec(1:nif)
-         call move_alloc(tmp, spec)
-         nif = nif + 1
-         spec(nif)%line = d%cards(icard)%line
-         spec(nif)%law%line = d%cards(icard)%line
-         allocate (spec(nif)%pa(0), spec(nif)%pb(0), spec(nif)%pg0(0), spec(nif)%palpha(0), spec(nif)%parea(0), &
-                   spec(nif)%has_g0(0), spec(nif)%has_alpha(0), spec(nif)%has_area(0), spec(nif)%pline(0))
-      end subroutine new_interface
+   ! ------------------------------------------------------------------ CONTACT: algorithm options
 
-      !> Cards before the first INTERFACE card open interface 1.
-      subroutine need_interface(icard)
-         integer, intent(in) :: icard
-         if (nif == 0) call new_interface(icard)
-      end subroutine need_interface
+   !> AUGMENTED: penalty FACTOR (11-20) and TOL (21-30) of the ideal contact.
+   subroutine read_augmented(d, ic, opts)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(contact_options_t), intent(inout) :: opts
+      real(dp) :: v1, v2
+      logical :: ok
+      ok = .true.
+      call d%get_real(ic, 11, 20, 'CONTACT/AUGMENTED', 'FACTOR', v1, ok, default=100.0_dp)
+      call d%get_real(ic, 21, 30, 'CONTACT/AUGMENTED', 'TOL', v2, ok, default=1.0e-6_dp)
+      call tail(d, ic, 31, 'FACTOR and TOL in columns 11-30', ok)
+      if (.not. ok) return
+      if (.not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/AUGMENTED: FACTOR (columns '// &
+                                               '11-20) expected a positive penalty factor, found '//rtoa(v1))
+      if (.not. (v2 > 0.0_dp .and. v2 < 1.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/AUGMENTED: '// &
+                   'TOL (columns 21-30) expected a tolerance in (0, 1) relative to the smallest contact '// &
+                   'element, found '//rtoa(v2))
+      opts%aug_factor = v1
+      opts%aug_tol = v2
+   end subroutine read_augmented
 
-      subroutine tail(icard, col, what, okay)
-         integer, intent(in) :: icard, col
-         character(len=*), intent(in) :: what
-         logical, intent(inout) :: okay
-         character(len=:), allocatable :: t
-         t = trim(adjustl(d%field_text(icard, col, 100000)))
-         if (len(t) > 0) then
-            call d%error_at(icard, col, 'E-EXTRA', 'CONTACT: expected '//what//', found more: "'//t//'"')
-            okay = .false.
-         end if
-      end subroutine tail
+   !> UPDATE or SCHEME (key): SCHEME INCREMENTAL (the paper) = UPDATE
+   !! EXPLICIT; SCHEME NEWTON = UPDATE RETURN; SCHEME MODIFIED = RETURN with
+   !! the stiffness kept (modified Newton).
+   subroutine read_update(d, ic, key, opts)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      character(len=*), intent(in) :: key    !! UPDATE or SCHEME, for messages
+      type(contact_options_t), intent(inout) :: opts
+      character(len=:), allocatable :: w
+      logical :: ok
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/'//key, key, w, ok)
+      select case (w)
+      case ('EXPLICIT', 'INCREMENTA')
+         opts%update = UPDATE_EXPLICIT
+         opts%modified = .false.
+      case ('RETURN', 'NEWTON')
+         opts%update = UPDATE_RETURN
+         opts%modified = .false.
+      case ('MODIFIED')
+         opts%update = UPDATE_RETURN
+         opts%modified = .true.
+      case default
+         if (ok) call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/'//key//' (columns 11-20) expected '// &
+                                 'INCREMENTAL (or EXPLICIT), NEWTON (or RETURN) or MODIFIED, found "'//w//'"')
+      end select
+   end subroutine read_update
 
-      subroutine read_friction(icard)
-         integer, intent(in) :: icard
-         logical :: okf
-         character(len=:), allocatable :: kind
-         real(dp) :: mu, beta, rate
-         okf = .true.
-         call d%get_word(icard, 11, 20, 'CONTACT/FRICTION', 'LAW', kind, okf)
-         if (.not. okf) return
-         ! FREDRIKSSON does not fit ten columns: any abbreviation of 4+ letters
-         if (len(kind) >= 4 .and. len(kind) <= 11) then
-            if (kind == 'FREDRIKSSON'(1:len(kind))) kind = 'FREDRIKSSON'
-         end if
-         select case (kind)
-         case ('NONE')
-            call tail(icard, 21, 'NONE alone', okf)
-            spec(nif)%law%friction = FRICTION_NONE
-            spec(nif)%law%mu_m = 0.0_dp
-         case ('COULOMB')
-            call d%get_real(icard, 21, 30, 'CONTACT/FRICTION', 'MU', mu, okf)
-            call tail(icard, 31, 'COULOMB and MU in columns 11-30', okf)
-            if (.not. okf) return
-            if (.not. (mu >= 0.0_dp)) call d%error_at(icard, 21, 'E-CONTACT', 'CONTACT/FRICTION: MU (columns 21-30) '// &
-                                                      'expected a friction coefficient >= 0, found '//rtoa(mu))
-            spec(nif)%law%friction = FRICTION_COULOMB
-            spec(nif)%law%mu_m = mu
-            spec(nif)%law%beta = 1.0_dp
-         case ('FREDRIKSSON')
-            call d%get_real(icard, 21, 30, 'CONTACT/FRICTION', 'MU_M', mu, okf)
-            call d%get_real(icard, 31, 40, 'CONTACT/FRICTION', 'BETA', beta, okf)
-            call d%get_real(icard, 41, 50, 'CONTACT/FRICTION', 'N', rate, okf)
-            call tail(icard, 51, 'FREDRIKSSON, MU_M, BETA, N in columns 11-50', okf)
-            if (.not. okf) return
-            if (.not. (mu >= 0.0_dp)) call d%error_at(icard, 21, 'E-CONTACT', 'CONTACT/FRICTION: MU_M (columns 21-30) '// &
-                                                      'expected a friction coefficient >= 0, found '//rtoa(mu))
-            if (.not. (beta > 0.0_dp .and. beta <= 1.0_dp)) call d%error_at(icard, 31, 'E-CONTACT', &
-                         'CONTACT/FRICTION: BETA (columns 31-40) expected the initial fraction of mu_m in (0, 1], found '// &
-                         rtoa(beta))
-            if (.not. (rate >= 0.0_dp)) call d%error_at(icard, 41, 'E-CONTACT', 'CONTACT/FRICTION: N (columns 41-50) '// &
-                                                        'expected a hardening rate >= 0 (1/length), found '//rtoa(rate))
-            spec(nif)%law%friction = FRICTION_FREDRIKSSON
-            spec(nif)%law%mu_m = mu
-            spec(nif)%law%beta = beta
-            spec(nif)%law%n_hard = rate
-         case default
-            call d%error_at(icard, 11, 'E-CONTACT', 'CONTACT/FRICTION (columns 11-20) expected NONE, COULOMB or '// &
-                            'FREDRIKSSON, found "'//kind//'"')
-            return
-         end select
-         spec(nif)%have_friction = .true.
-      end subroutine read_friction
+   !> CONVERGE: relative force TOLR (11-20) and displacement TOLU (21-30) tolerances.
+   subroutine read_converge(d, ic, opts)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(contact_options_t), intent(inout) :: opts
+      real(dp) :: v1, v2
+      logical :: ok
+      ok = .true.
+      call d%get_real(ic, 11, 20, 'CONTACT/CONVERGE', 'TOLR', v1, ok, default=1.0e-10_dp)
+      call d%get_real(ic, 21, 30, 'CONTACT/CONVERGE', 'TOLU', v2, ok, default=1.0e-8_dp)
+      call tail(d, ic, 31, 'TOLR, TOLU in columns 11-30', ok)
+      if (ok .and. .not. (v1 > 0.0_dp .and. v1 < 1.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', &
+             'CONTACT/CONVERGE: TOLR (columns 11-20) expected a relative force tolerance in (0, 1), found '//rtoa(v1))
+      if (ok .and. .not. (v2 > 0.0_dp .and. v2 < 1.0_dp)) call d%error_at(ic, 21, 'E-CONTACT', &
+             'CONTACT/CONVERGE: TOLU (columns 21-30) expected a relative displacement tolerance in (0, 1), found '// &
+             rtoa(v2))
+      if (ok) then
+         opts%tol_residual = v1
+         opts%tol_displacement = v2
+      end if
+   end subroutine read_converge
 
-      subroutine read_node_list(icard)
-         integer, intent(in) :: icard
-         integer :: k, c1, node
-         logical :: okn
-         okn = .true.
-         do k = 1, 16
-            c1 = 1 + 5*(k - 1)
-            if (len_trim(d%field_text(icard, c1, c1 + 4)) == 0) cycle
-            call d%get_int(icard, c1, c1 + 4, 'CONTACT/SURFACE', 'NODE'//itoa(k), node, okn)
-            if (.not. okn) return
-            if (node < 1 .or. node > m%npoin) then
-               call d%error_at(icard, c1, 'E-RANGE', 'CONTACT/SURFACE: node number (columns '//itoa(c1)//'-'// &
-                               itoa(c1 + 4)//') expected 1..'//itoa(m%npoin)//', found '//itoa(node))
-               cycle
-            end if
-            spec(nif)%surf(iside)%nodes = [spec(nif)%surf(iside)%nodes, node]
-         end do
-         if (len_trim(d%field_text(icard, 81, 100000)) > 0) call d%error_at(icard, 81, 'E-EXTRA', &
-                                                  'CONTACT/SURFACE: at most 16 node numbers per card (columns 1-80)')
-      end subroutine read_node_list
+   !> FIRSTINC: SECANT or ITERATE (11-20), the rule of the first increment.
+   subroutine read_firstinc(d, ic, opts)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(contact_options_t), intent(inout) :: opts
+      character(len=:), allocatable :: w
+      logical :: ok
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/FIRSTINC', 'RULE', w, ok)
+      if (w == 'SECANT') then
+         opts%first_iterate = .false.
+      else if (w == 'ITERATE') then
+         opts%first_iterate = .true.
+      else if (ok) then
+         call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/FIRSTINC (columns 11-20) expected SECANT or ITERATE, '// &
+                         'found "'//w//'"')
+      end if
+   end subroutine read_firstinc
 
-      subroutine read_pair(icard)
-         integer, intent(in) :: icard
-         integer :: na, nb
-         real(dp) :: g0, alpha, area
-         logical :: okp
-         okp = .true.
-         call d%get_int(icard, 1, 5, 'CONTACT/PAIRS', 'NODEA', na, okp)
-         call d%get_int(icard, 6, 10, 'CONTACT/PAIRS', 'NODEB', nb, okp)
-         call d%get_real(icard, 11, 20, 'CONTACT/PAIRS', 'G0', g0, okp, default=0.0_dp)
-         call d%get_real(icard, 21, 30, 'CONTACT/PAIRS', 'ALPHA', alpha, okp, default=0.0_dp)
-         call d%get_real(icard, 31, 40, 'CONTACT/PAIRS', 'AREA', area, okp, default=0.0_dp)
-         call tail(icard, 41, 'NODEA, NODEB, G0, ALPHA, AREA in columns 1-40', okp)
-         if (.not. okp) return
-         if (na < 1 .or. na > m%npoin .or. nb < 1 .or. nb > m%npoin) then
-            call d%error_at(icard, 1, 'E-RANGE', 'CONTACT/PAIRS: node numbers (columns 1-10) expected 1..'// &
-                            itoa(m%npoin)//', found '//itoa(na)//' and '//itoa(nb))
-            return
-         end if
-         if (len_trim(d%field_text(icard, 31, 40)) > 0 .and. .not. (area > 0.0_dp)) then
-            call d%error_at(icard, 31, 'E-CONTACT', 'CONTACT/PAIRS: AREA (columns 31-40) expected a positive area, '// &
-                            'found '//rtoa(area))
-            return
-         end if
-         associate (s => spec(nif))
-            s%npair = s%npair + 1
-            s%pa = [s%pa, na]
-            s%pb = [s%pb, nb]
-            s%pg0 = [s%pg0, g0]
-            s%palpha = [s%palpha, alpha]
-            s%parea = [s%parea, area]
-            s%has_g0 = [s%has_g0, len_trim(d%field_text(icard, 11, 20)) > 0]
-            s%has_alpha = [s%has_alpha, len_trim(d%field_text(icard, 21, 30)) > 0]
-            s%has_area = [s%has_area, len_trim(d%field_text(icard, 31, 40)) > 0]
-            s%pline = [s%pline, d%cards(icard)%line]
-         end associate
-      end subroutine read_pair
-   end subroutine read_contact
+   !> NEWCLOSED: SECANT or TANGENT (11-20) and PMIN (21-30), a fraction of p_m.
+   subroutine read_newclosed(d, ic, opts)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(contact_options_t), intent(inout) :: opts
+      character(len=:), allocatable :: w
+      real(dp) :: v1
+      logical :: ok
+      ok = .true.
+      call d%get_word(ic, 11, 20, 'CONTACT/NEWCLOSED', 'RULE', w, ok)
+      call d%get_real(ic, 21, 30, 'CONTACT/NEWCLOSED', 'PMIN', v1, ok, default=1.0e-3_dp)
+      call tail(d, ic, 31, 'SECANT or TANGENT and PMIN in columns 11-30', ok)
+      if (ok .and. w == 'SECANT') then
+         opts%newly_closed = NEWCLOSED_SECANT
+      else if (ok .and. w == 'TANGENT') then
+         opts%newly_closed = NEWCLOSED_TANGENT
+      else if (ok) then
+         call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/NEWCLOSED (columns 11-20) expected SECANT or TANGENT, '// &
+                         'found "'//w//'"')
+      end if
+      if (ok .and. .not. (v1 > 0.0_dp .and. v1 < 1.0_dp)) then
+         call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/NEWCLOSED: PMIN (columns 21-30) expected the floor '// &
+                         'pressure as a fraction of p_m in (0, 1), found '//rtoa(v1))
+      else if (ok) then
+         opts%p_min_ratio = v1
+      end if
+   end subroutine read_newclosed
+
+   !> REPEATS: MAXREP (11-20), the cap on repeats of one increment.
+   subroutine read_repeats(d, ic, opts)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(contact_options_t), intent(inout) :: opts
+      integer :: iv
+      logical :: ok
+      ok = .true.
+      call d%get_int(ic, 11, 20, 'CONTACT/REPEATS', 'MAXREP', iv, ok)
+      if (ok .and. (iv < 1 .or. iv > 10000)) then
+         call d%error_at(ic, 11, 'E-CONTACT', 'CONTACT/REPEATS (columns 11-20) expected 1..10000, found '//itoa(iv))
+      else if (ok) then
+         opts%max_repeats = iv
+         opts%repeats_given = .true.
+      end if
+   end subroutine read_repeats
+
+   !> START: starting pressure PM (11-20) [model stress], NSTART (21-30) and
+   !! GAPTOL (31-40) [model length].
+   subroutine read_start(d, ic, opts)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(contact_options_t), intent(inout) :: opts
+      real(dp) :: v1, v2
+      integer :: iv
+      logical :: ok
+      ok = .true.
+      call d%get_real(ic, 11, 20, 'CONTACT/START', 'PM', v1, ok, default=-1.0_dp)
+      call d%get_int(ic, 21, 30, 'CONTACT/START', 'NSTART', iv, ok, default=0)
+      call d%get_real(ic, 31, 40, 'CONTACT/START', 'GAPTOL', v2, ok, default=-1.0_dp)
+      call tail(d, ic, 41, 'PM, NSTART, GAPTOL in columns 11-40', ok)
+      if (.not. ok) return
+      if (len_trim(d%field_text(ic, 11, 20)) > 0 .and. .not. (v1 > 0.0_dp)) call d%error_at(ic, 11, &
+                   'E-CONTACT', 'CONTACT/START: PM (columns 11-20) expected a positive starting pressure, '// &
+                   'found '//rtoa(v1))
+      if (iv < 0) call d%error_at(ic, 21, 'E-CONTACT', 'CONTACT/START: NSTART (columns 21-30) expected a '// &
+                                  'number of pairs >= 0, found '//itoa(iv))
+      opts%p_start = v1
+      opts%n_start = iv
+      opts%gap_tol = v2
+   end subroutine read_start
 
 end module deck_contact

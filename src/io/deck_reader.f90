@@ -2,14 +2,20 @@
 !!
 !! Blocks come in a fixed order, each introduced by a keyword card:
 !!
-!!     TITLE, CONTROL, [OPTIONS], ELEMENTS, NODES, RESTRAINTS, MATERIALS,
-!!     [LOADS], [INCREMENTS], END
+!!     TITLE, CONTROL, [OPTIONS], [MESH], ELEMENTS, NODES, RESTRAINTS, [TIES],
+!!     MATERIALS, [LOADS], [CONTACT], [INCREMENTS], END
 !!
 !! One reader routine per block (CalculiX style).  Every problem is collected
 !! in the deck's error list with file, line, column, the card's name, what was
 !! expected and what was found; reading goes on after an error so that one run
 !! shows as many errors as possible.  The format is specified in
 !! docs/deck-format.md, which this module follows column for column.
+!!
+!! The reader knows the model only: it stores what the deck says (the CONTACT
+!! block as the model's contact specification) and returns.  The contact
+!! definition and the checks that need the element kernels (Jacobians, rigid
+!! body motion) run after it, in driver/model_input (`read_model`), and report
+!! into the same error list.
 !!
 !! Ref: E. Hinton, D. R. J. Owen, *Finite Element Programming*, 1977, routine INPUT.
 module deck_reader
@@ -19,9 +25,8 @@ module deck_reader
    use deck_lexer, only: deck_t
    use model, only: model_t, material_t, restraint_t, point_load_t, edge_load_t, &
                     body_load_t, MAX_NODE, NTYPE_AXISYMMETRIC
-   use shape_2d, only: element_edge_nodes, nedges
-   use solid2d, only: min_jacobian
-   use restraint_check, only: unrestrained_bodies
+   use topology, only: element_edge_nodes, nedges
+   use contact_spec, only: is_rigid_reference
    use deck_contact, only: read_ties, read_contact
    use mesh_block, only: read_mesh_block
    use group_cards, only: is_group_card, read_group_restraint, read_group_point_load, read_group_edge_load, &
@@ -58,7 +63,7 @@ contains
       type(deck_t) :: d
       type(control_t) :: ctl
       logical :: loaded, seen(size(block_order))
-      integer :: ic, iblk, last, k, restraint_line
+      integer :: ic, iblk, last, k
       character(len=:), allocatable :: kw
 
       call d%load(path, loaded)
@@ -82,7 +87,6 @@ contains
 
       seen = .false.
       last = 0
-      restraint_line = 0
       do while (.not. d%at_end())
          ic = d%next()
          kw = d%keyword(ic)
@@ -115,74 +119,15 @@ contains
          end do
          seen(iblk) = .true.
          last = iblk
-         ! a block whose prerequisites failed cannot be checked meaningfully
-         select case (trim(kw))
-         case ('TITLE')
-            call read_title(d, ic, m)
-         case ('CONTROL')
-            call read_control(d, ic, m, ctl)
-         case ('OPTIONS')
-            call read_options(d, m)
-         case ('MESH')
-            call start_mesh_block(d, ic, m, ctl)
-         case ('ELEMENTS')
-            if (.not. ctl%ok) then
-               call skip_to_block(d)
-            else if (mesh_conflict(d, ic, ctl, seen)) then
-               call skip_to_block(d)
-            else
-               call read_elements(d, ic, m)
-            end if
-         case ('NODES')
-            if (.not. ctl%ok) then
-               call skip_to_block(d)
-            else if (mesh_conflict(d, ic, ctl, seen)) then
-               call skip_to_block(d)
-            else
-               call read_nodes(d, ic, m)
-            end if
-         case ('RESTRAINTS')
-            restraint_line = d%cards(ic)%line
-            if (ctl%ok) then
-               call read_restraints(d, ic, m, ctl)
-            else
-               call skip_to_block(d)
-            end if
-         case ('TIES')
-            if (ctl%ok .and. allocated(m%coord)) then
-               call read_ties(d, m, is_block_card)
-            else
-               call skip_to_block(d)
-            end if
-         case ('CONTACT')
-            if (ctl%ok .and. allocated(m%coord) .and. allocated(m%lnods) .and. allocated(m%mats) .and. &
-                d%errors%n == 0) then
-               call read_contact(d, ic, m, warnings, is_block_card)
-            else
-               call skip_to_block(d)
-            end if
-         case ('MATERIALS')
-            if (ctl%ok) then
-               call read_materials(d, ic, m, warnings)
-            else
-               call skip_to_block(d)
-            end if
-         case ('LOADS')
-            if (ctl%ok) then
-               call read_loads(d, m)
-            else
-               call skip_to_block(d)
-            end if
-         case ('INCREMENTS')
-            call read_increments(d, m)
-         case ('END')
+         if (kw == 'END') then
             if (.not. d%at_end()) then
                ic = d%next()
                call d%error_at(ic, 1, 'E-AFTER-END', 'nothing may follow the END card, found "'// &
                                trim(d%cards(ic)%text)//'"')
             end if
             exit
-         end select
+         end if
+         call read_block(d, ic, kw, m, ctl, seen, warnings)
       end do
 
       do k = 1, size(block_order)
@@ -192,10 +137,7 @@ contains
          end if
       end do
 
-      if (ctl%ok) then
-         call finish_model(m)
-         if (d%errors%n == 0) call check_model(d, m, restraint_line)
-      end if
+      if (ctl%ok) call finish_model(m)
       errors = d%errors
    contains
       !> Whether block k must appear: ELEMENTS and NODES not after a MESH block.
@@ -206,6 +148,78 @@ contains
             required = .false.
       end function required
    end subroutine read_deck
+
+   !> Read block kw, whose keyword card is ic, if the blocks it needs were read.
+   subroutine read_block(d, ic, kw, m, ctl, seen, warnings)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      character(len=*), intent(in) :: kw               !! the block keyword
+      type(model_t), intent(inout) :: m
+      type(control_t), intent(inout) :: ctl
+      logical, intent(in) :: seen(:)                   !! blocks seen so far (this one included)
+      type(error_list_t), intent(inout) :: warnings
+      ! a block whose prerequisites failed cannot be checked meaningfully: skipped
+      select case (trim(kw))
+      case ('TITLE')
+         call read_title(d, ic, m)
+      case ('CONTROL')
+         call read_control(d, ic, m, ctl)
+      case ('OPTIONS')
+         call read_options(d, m)
+      case ('MESH')
+         call start_mesh_block(d, ic, m, ctl)
+      case ('ELEMENTS')
+         if (.not. ctl%ok) then
+            call skip_to_block(d)
+         else if (mesh_conflict(d, ic, ctl, seen)) then
+            call skip_to_block(d)
+         else
+            call read_elements(d, ic, m)
+         end if
+      case ('NODES')
+         if (.not. ctl%ok) then
+            call skip_to_block(d)
+         else if (mesh_conflict(d, ic, ctl, seen)) then
+            call skip_to_block(d)
+         else
+            call read_nodes(d, ic, m)
+         end if
+      case ('RESTRAINTS')
+         m%restraints_line = d%cards(ic)%line
+         if (ctl%ok) then
+            call read_restraints(d, ic, m, ctl)
+         else
+            call skip_to_block(d)
+         end if
+      case ('TIES')
+         if (ctl%ok .and. allocated(m%coord)) then
+            call read_ties(d, m, is_block_card)
+         else
+            call skip_to_block(d)
+         end if
+      case ('CONTACT')
+         if (ctl%ok .and. allocated(m%coord) .and. allocated(m%lnods) .and. allocated(m%mats) .and. &
+             d%errors%n == 0) then
+            call read_contact(d, ic, m, is_block_card)
+         else
+            call skip_to_block(d)
+         end if
+      case ('MATERIALS')
+         if (ctl%ok) then
+            call read_materials(d, ic, m, warnings)
+         else
+            call skip_to_block(d)
+         end if
+      case ('LOADS')
+         if (ctl%ok) then
+            call read_loads(d, m)
+         else
+            call skip_to_block(d)
+         end if
+      case ('INCREMENTS')
+         call read_increments(d, m)
+      end select
+   end subroutine read_block
 
    !> MESH block: only with NPOIN = NELEM = 0 on the control card (see mesh_block).
    subroutine start_mesh_block(d, ic, m, ctl)
@@ -390,8 +404,8 @@ contains
                                                     'or 1-4 Gauss points per direction, found '//itoa(m%ngaus))
          if (m%nnode == 3 .and. all(m%ngaus /= [0, 1, 3])) call bad(31, 'NGAUS (columns 31-35) for triangles '// &
                                                                     'expected 0, 1 or 3 points, found '//itoa(m%ngaus))
-         if (all(w /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'DENSE'])) &
-            call bad(36, 'SOLVER (columns 36-45) expected SKYLINE, UMFPACK or DENSE, found "'//w//'"')
+         if (all(w /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'MUMPS', 'DENSE'])) &
+            call bad(36, 'SOLVER (columns 36-45) expected SKYLINE, UMFPACK, MUMPS or DENSE, found "'//w//'"')
       end if
       m%solver_name = w
       ctl%ok = ok
@@ -1076,7 +1090,7 @@ contains
             ! a rigid body's reference node moves axially only: a rigid ring
             ! cannot change its radius (its radial restraint is added like
             ! that of a node on the axis)
-            if (abs(m%coord(1, ip)) > tol .and. .not. is_reference_node(m, ip)) cycle
+            if (abs(m%coord(1, ip)) > tol .and. .not. is_rigid_reference(m%contact_spec, ip)) cycle
             found = .false.
             do k = 1, size(m%fixes)
                if (m%fixes(k)%node == ip) then
@@ -1096,83 +1110,4 @@ contains
       end if
    end subroutine finish_model
 
-   !> Is node ip the reference node of a rigid body of the CONTACT block?
-   pure logical function is_reference_node(m, ip)
-      type(model_t), intent(in) :: m
-      integer, intent(in) :: ip
-      is_reference_node = .false.
-      if (.not. allocated(m%contact%rigids)) return
-      if (size(m%contact%rigids) == 0) return
-      is_reference_node = any(m%contact%rigids%node == ip)
-   end function is_reference_node
-
-   !> Checks that need the whole model: geometry of every element, nodes that
-   !! belong to no element, and rigid-body motion of every body.
-   subroutine check_model(d, m, restraint_line)
-      type(deck_t), intent(inout) :: d
-      type(model_t), intent(inout) :: m
-      integer, intent(in) :: restraint_line
-      integer :: ie, nn, ip, k, nbad
-      real(dp) :: jmin, elcod(2, MAX_NODE), size2
-      logical, allocatable :: used(:)
-      integer, allocatable :: bad_node(:), nolinks(:, :)
-      character(len=80), allocatable :: what(:)
-      character(len=:), allocatable :: msg
-
-      allocate (used(m%npoin))
-      used = .false.
-      do ie = 1, m%nelem
-         nn = m%nnode_e(ie)
-         elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
-         used(m%lnods(1:nn, ie)) = .true.
-         size2 = maxval(elcod(1, 1:nn)) - minval(elcod(1, 1:nn)) + maxval(elcod(2, 1:nn)) - minval(elcod(2, 1:nn))
-         jmin = min_jacobian(nn, elcod(:, 1:nn))
-         if (.not. (jmin > 1.0e-12_dp*size2**2)) then
-            msg = 'ELEMENTS: element '//itoa(ie)//' is '
-            if (jmin < -1.0e-12_dp*size2**2) then
-               msg = msg//'inverted or distorted (Jacobian determinant '//rtoa(jmin)// &
-                     ' < 0; corner nodes must be numbered anticlockwise, midside nodes near the middle of their edges)'
-            else
-               msg = msg//'degenerate (zero area: Jacobian determinant '//rtoa(jmin)//')'
-            end if
-            if (allocated(m%mesh_file)) then
-               call d%errors%add('E-GEOMETRY', msg, file=m%mesh_file, line=m%elem_line(ie))
-            else
-               call d%errors%add('E-GEOMETRY', msg, file=d%file, line=m%elem_line(ie), col=11)
-            end if
-         end if
-      end do
-      do ip = 1, m%npoin
-         if (.not. used(ip) .and. .not. is_reference_node(m, ip)) then
-            call d%errors%add('E-UNUSED', 'NODES: node '//itoa(ip)//' belongs to no element '// &
-                              '(its displacement would be undetermined; only the reference node of a rigid body '// &
-                              'in CONTACT may be a node of no element)', file=d%file, line=m%node_line(ip), col=1)
-         end if
-      end do
-      if (m%ntype == NTYPE_AXISYMMETRIC) then
-         do k = 1, size(m%fixes)
-            if (.not. is_reference_node(m, m%fixes(k)%node)) cycle
-            if (abs(m%fixes(k)%value(1)) > 0.0_dp) call d%errors%add('E-RIGID', 'RESTRAINTS: node '// &
-                itoa(m%fixes(k)%node)//' is the reference node of a rigid body, which can only move axially '// &
-                'in an axisymmetric model: its radial displacement must be 0, found UX = '// &
-                rtoa(m%fixes(k)%value(1)), file=d%file, line=m%fixes(k)%line, col=11)
-         end do
-      end if
-      if (d%errors%n > 0) return
-
-      ! bodies joined by ties or contact pairs are checked together
-      allocate (nolinks(2, size(m%ties, 2) + size(m%contact%pairs)))
-      do k = 1, size(m%ties, 2)
-         nolinks(:, k) = m%ties(1:2, k)
-      end do
-      do k = 1, size(m%contact%pairs)
-         nolinks(:, size(m%ties, 2) + k) = [m%contact%pairs(k)%node_a, m%contact%pairs(k)%node_b]
-      end do
-      call unrestrained_bodies(m, nolinks, nbad, bad_node, what)
-      do k = 1, nbad
-         call d%errors%add('E-UNRESTRAINED', 'RESTRAINTS: unrestrained model: the body containing node '// &
-                           itoa(bad_node(k))//' is free to move as a rigid body ('//trim(what(k))// &
-                           '); add restraints that prevent it', file=d%file, line=max(restraint_line, 1))
-      end do
-   end subroutine check_model
 end module deck_reader

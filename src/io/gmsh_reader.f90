@@ -26,8 +26,7 @@ module gmsh_reader
    use errors, only: error_list_t
    use strings, only: itoa, rtoa, same_name
    use model, only: model_t, node_set_t, edge_set_t, MAX_NODE
-   use shape_2d, only: element_edge_nodes, nedges
-   use quadrature, only: valid_ngaus
+   use topology, only: element_edge_nodes, nedges
    implicit none
    private
 
@@ -869,6 +868,8 @@ contains
    !! deck lines `mat_lines(k)` of the MATERIAL cards locate errors in the deck
    !! `deck_file`.  `nnode_req` > 0 requires every element to have that many
    !! nodes.  Errors go to `errors` (file and line in the .msh or the deck).
+   !! Whether the control card's NGAUS suits the elements is checked after
+   !! reading (driver/model_input), with the element kernels.
    subroutine gmsh_to_model(msh, mat_names, mat_numbers, mat_lines, deck_file, nnode_req, m, errors)
       type(gmsh_mesh_t), intent(in) :: msh
       character(len=*), intent(in) :: mat_names(:)
@@ -877,11 +878,9 @@ contains
       integer, intent(in) :: nnode_req
       type(model_t), intent(inout) :: m
       type(error_list_t), intent(inout) :: errors
-      integer, allocatable :: idx_of(:), sorted(:), surf(:), eptr(:), elist(:), cnt(:)
-      logical, allocatable :: used(:), unmapped_reported(:)
-      integer :: k, j, ie, nn, ip, nelem, npoin, kg, imat, tmin, tmax, n0, nq, nl, g, ng
-      integer :: nsurf
-      real(dp) :: area
+      integer, allocatable :: surf(:), sorted(:), eptr(:), elist(:)
+      integer :: k, g, n0
+      logical :: ok
 
       n0 = errors%n
       ! every MATERIAL card names a physical surface of the file
@@ -891,7 +890,35 @@ contains
                                      '", which '//msh%path//' does not have (its physical surfaces: '// &
                                      group_list(msh, 2)//')', file=deck_file, line=mat_lines(k), col=11)
       end do
-      ! the 2-D elements
+      call surface_elements(msh, nnode_req, surf, errors, ok)
+      if (.not. ok .or. errors%n > n0) return
+      if (allocated(m%matno)) deallocate (m%matno)
+      allocate (m%matno(size(surf)))
+      call assign_materials(msh, surf, mat_names, mat_numbers, deck_file, m%matno, errors)
+      if (errors%n > n0) return
+      call number_nodes(msh, surf, m, sorted, errors, ok)
+      if (.not. ok) return
+      call node_elements(m, eptr, elist)
+      ! physical curves and points: node sets and edge sets
+      allocate (m%node_sets(0), m%edge_sets(0))
+      do g = 1, size(msh%groups)
+         if (msh%groups(g)%dim > 1) cycle
+         call build_sets(msh, g, sorted, eptr, elist, m, errors)
+         if (errors%n > n0) return
+      end do
+   end subroutine gmsh_to_model
+
+   !> The 2-D elements of the file (surf: their indices in msh), all linear
+   !! or all quadratic, with nnode_req nodes when that is > 0.  ok is false
+   !! when the file has none (reported).
+   subroutine surface_elements(msh, nnode_req, surf, errors, ok)
+      type(gmsh_mesh_t), intent(in) :: msh
+      integer, intent(in) :: nnode_req              !! NNODE of the control card (0: any)
+      integer, allocatable, intent(out) :: surf(:)
+      type(error_list_t), intent(inout) :: errors
+      logical, intent(out) :: ok
+      integer :: k, nn, nsurf, nq, nl
+
       allocate (surf(msh%nelems))
       nsurf = 0
       nq = 0
@@ -913,7 +940,9 @@ contains
             exit
          end if
       end do
-      if (nsurf == 0) then
+      surf = surf(1:nsurf)
+      ok = nsurf > 0
+      if (.not. ok) then
          call errors%add('E-GMSH', 'the mesh has no 2-D elements (triangles or quadrilaterals): '// &
                          'mesh the surfaces (gmsh -2) and put them in physical surfaces', file=msh%path)
          return
@@ -922,16 +951,24 @@ contains
          call errors%add('E-GMSH', 'the mesh mixes linear (3-, 4-node) and quadratic (8-, 9-node) elements, '// &
                          'which do not conform along their common edges', file=msh%path)
       end if
-      if (errors%n > n0) return
+   end subroutine surface_elements
 
-      ! materials
-      nelem = nsurf
-      allocate (unmapped_reported(size(msh%groups)))
+   !> Material of every 2-D element surf(ie): that of the MATERIAL card naming
+   !! one of its physical surfaces (0 where none does; reported).
+   subroutine assign_materials(msh, surf, mat_names, mat_numbers, deck_file, matno, errors)
+      type(gmsh_mesh_t), intent(in) :: msh
+      integer, intent(in) :: surf(:)
+      character(len=*), intent(in) :: mat_names(:)
+      integer, intent(in) :: mat_numbers(:)
+      character(len=*), intent(in) :: deck_file
+      integer, intent(out) :: matno(:)               !! (size(surf))
+      type(error_list_t), intent(inout) :: errors
+      logical :: unmapped_reported(size(msh%groups))
+      integer :: ie, k, j, g, kg, imat
+
       unmapped_reported = .false.
-      if (allocated(m%matno)) deallocate (m%matno)
-      allocate (m%matno(nelem))
-      m%matno = 0
-      do ie = 1, nelem
+      matno = 0
+      do ie = 1, size(surf)
          k = surf(ie)
          imat = 0
          if (msh%nphys(k) == 0) then
@@ -942,7 +979,7 @@ contains
          do j = 1, msh%nphys(k)
             g = find_group(msh, 2, msh%ephys(j, k))
             kg = 0
-            if (g > 0) kg = mat_index(msh%groups(g)%name)
+            if (g > 0) kg = name_index(mat_names, msh%groups(g)%name)
             if (kg > 0) then
                if (imat /= 0 .and. imat /= mat_numbers(kg)) then
                   call errors%add('E-GMSH', 'element in two physical surfaces with different materials', &
@@ -961,11 +998,41 @@ contains
                end if
             end if
          end if
-         m%matno(ie) = imat
+         matno(ie) = imat
       end do
-      if (errors%n > n0) return
+   end subroutine assign_materials
 
-      ! nodes used by the 2-D elements, numbered in increasing tag order
+   !> Index of `name` in `names` (case-insensitive), 0 if absent.
+   pure integer function name_index(names, name)
+      character(len=*), intent(in) :: names(:), name
+      integer :: q
+      name_index = 0
+      do q = 1, size(names)
+         if (same_name(names(q), name)) then
+            name_index = q
+            return
+         end if
+      end do
+   end function name_index
+
+   !> The nodes and elements of the model: the nodes used by the 2-D elements
+   !! surf, numbered 1..npoin in increasing tag order (sorted(tag) = node, 0
+   !! for an unused tag; bounds tmin:tmax of the tags), and the elements with
+   !! their corners made anticlockwise.  ok is false if a tag is defined
+   !! twice or used but not defined (reported).
+   subroutine number_nodes(msh, surf, m, sorted, errors, ok)
+      type(gmsh_mesh_t), intent(in) :: msh
+      integer, intent(in) :: surf(:)
+      type(model_t), intent(inout) :: m                !! matno set; mesh filled here
+      integer, allocatable, intent(out) :: sorted(:)
+      type(error_list_t), intent(inout) :: errors
+      logical, intent(out) :: ok
+      integer, allocatable :: idx_of(:)
+      logical, allocatable :: used(:)
+      integer :: k, j, ie, nn, ip, tmin, tmax, nelem, npoin
+
+      ok = .false.
+      nelem = size(surf)
       tmin = minval(msh%node_tag)
       tmax = maxval(msh%node_tag)
       allocate (idx_of(tmin:tmax), used(tmin:tmax))
@@ -1031,160 +1098,165 @@ contains
             m%lnods(j, ie) = sorted(msh%enodes(j, k))
          end do
          ! anticlockwise corners: reverse a clockwise element
-         area = signed_area(m, ie)
-         if (area < 0.0_dp) call reverse_element(m%lnods(1:nn, ie))
-         if (m%ngaus /= 0 .and. .not. valid_ngaus(nn, m%ntype, m%ngaus)) then
-            call errors%add('E-GMSH', 'NGAUS = '//itoa(m%ngaus)//' on the control card is not valid for the '// &
-                            itoa(nn)//'-node elements of the mesh (use 0 for the default rules)', &
-                            file=msh%path, line=msh%eline(k))
-            return
-         end if
+         if (signed_area(m, ie) < 0.0_dp) call reverse_element(m%lnods(1:nn, ie))
       end do
       m%nnode = maxval(m%nnode_e)
-
-      ! node -> elements, to find the element of each line element
-      allocate (cnt(npoin + 1))
-      cnt = 0
-      do ie = 1, nelem
-         do j = 1, m%nnode_e(ie)
-            cnt(m%lnods(j, ie)) = cnt(m%lnods(j, ie)) + 1
-         end do
-      end do
-      allocate (eptr(npoin + 1))
-      eptr(1) = 1
-      do ip = 1, npoin
-         eptr(ip + 1) = eptr(ip) + cnt(ip)
-      end do
-      allocate (elist(eptr(npoin + 1) - 1))
-      cnt = 0
-      do ie = 1, nelem
-         do j = 1, m%nnode_e(ie)
-            ip = m%lnods(j, ie)
-            elist(eptr(ip) + cnt(ip)) = ie
-            cnt(ip) = cnt(ip) + 1
-         end do
-      end do
-
-      ! physical curves and points: node sets and edge sets
-      ng = 0
-      allocate (m%node_sets(0), m%edge_sets(0))
-      do g = 1, size(msh%groups)
-         if (msh%groups(g)%dim > 1) cycle
-         call build_sets(g)
-         if (errors%n > n0) return
-      end do
+      ok = .true.
    contains
       subroutine bad_node(k, tag)
          integer, intent(in) :: k, tag
          call errors%add('E-GMSH', 'element refers to node tag '//itoa(tag)//', which $Nodes does not define', &
                          file=msh%path, line=msh%eline(k))
       end subroutine bad_node
+   end subroutine number_nodes
 
-      integer function mat_index(name)
-         character(len=*), intent(in) :: name
-         integer :: q
-         mat_index = 0
-         do q = 1, size(mat_names)
-            if (same_name(mat_names(q), name)) then
-               mat_index = q
-               return
-            end if
+   !> The elements of every node, in compressed rows: those of node ip are
+   !! elist(eptr(ip):eptr(ip+1)-1).
+   pure subroutine node_elements(m, eptr, elist)
+      type(model_t), intent(in) :: m
+      integer, allocatable, intent(out) :: eptr(:)     !! (npoin + 1)
+      integer, allocatable, intent(out) :: elist(:)
+      integer :: cnt(m%npoin + 1), ie, j, ip
+      cnt = 0
+      do ie = 1, m%nelem
+         do j = 1, m%nnode_e(ie)
+            cnt(m%lnods(j, ie)) = cnt(m%lnods(j, ie)) + 1
          end do
-      end function mat_index
+      end do
+      allocate (eptr(m%npoin + 1))
+      eptr(1) = 1
+      do ip = 1, m%npoin
+         eptr(ip + 1) = eptr(ip) + cnt(ip)
+      end do
+      allocate (elist(eptr(m%npoin + 1) - 1))
+      cnt = 0
+      do ie = 1, m%nelem
+         do j = 1, m%nnode_e(ie)
+            ip = m%lnods(j, ie)
+            elist(eptr(ip) + cnt(ip)) = ie
+            cnt(ip) = cnt(ip) + 1
+         end do
+      end do
+   end subroutine node_elements
 
-      !> Node set (and for a curve the edge set) of physical group g.
-      subroutine build_sets(g)
-         integer, intent(in) :: g
-         integer, allocatable :: nodes(:), sel(:), sed(:)
-         logical, allocatable :: inset(:)
-         integer :: k, j, q, tag, nse, iedge, loc(3), nloc, e, ie2, c1, c2, mid
-         logical :: found
-         allocate (inset(npoin), sel(0), sed(0))
+   !> Node set (and for a curve the edge set) of physical group g: its
+   !! elements' nodes, and each of its line elements located as an edge of a
+   !! 2-D element (sorted: model node of each tag; eptr/elist: node_elements).
+   subroutine build_sets(msh, g, sorted, eptr, elist, m, errors)
+      type(gmsh_mesh_t), intent(in) :: msh
+      integer, intent(in) :: g
+      integer, allocatable, intent(in) :: sorted(:)
+      integer, intent(in) :: eptr(:), elist(:)
+      type(model_t), intent(inout) :: m
+      type(error_list_t), intent(inout) :: errors
+      integer, allocatable :: sel(:), sed(:)
+      logical :: inset(m%npoin)
+      integer :: k, j, q, tag, iedge, nloc, ie2, mid
+      associate (grp => msh%groups(g))
+         allocate (sel(0), sed(0))
          inset = .false.
-         nse = 0
          do k = 1, msh%nelems
-            if (gmsh_dim(msh%etype(k)) /= msh%groups(g)%dim) cycle
-            if (.not. any(msh%ephys(1:msh%nphys(k), k) == msh%groups(g)%tag)) cycle
+            if (gmsh_dim(msh%etype(k)) /= grp%dim) cycle
+            if (.not. any(msh%ephys(1:msh%nphys(k), k) == grp%tag)) cycle
             do j = 1, gmsh_nnode(msh%etype(k))
                tag = msh%enodes(j, k)
                q = 0
-               if (tag >= tmin .and. tag <= tmax) q = sorted(tag)
+               if (tag >= lbound(sorted, 1) .and. tag <= ubound(sorted, 1)) q = sorted(tag)
                if (q == 0) then
-                  call errors%add('E-GMSH', 'physical group "'//msh%groups(g)%name//'": node tag '//itoa(tag)// &
+                  call errors%add('E-GMSH', 'physical group "'//grp%name//'": node tag '//itoa(tag)// &
                                   ' belongs to no 2-D element of the mesh', file=msh%path, line=msh%eline(k))
                   return
                end if
                inset(q) = .true.
             end do
-            if (msh%groups(g)%dim /= 1) cycle
+            if (grp%dim /= 1) cycle
             ! locate the line element as an edge of a 2-D element
-            c1 = sorted(msh%enodes(1, k))
-            c2 = sorted(msh%enodes(2, k))
             mid = 0
             if (msh%etype(k) == 8) mid = sorted(msh%enodes(3, k))
-            found = .false.
-            do e = eptr(c1), eptr(c1 + 1) - 1
-               ie2 = elist(e)
-               do iedge = 1, nedges(m%nnode_e(ie2))
-                  call element_edge_nodes(m%nnode_e(ie2), iedge, loc, nloc)
-                  associate (ga => m%lnods(loc(1), ie2), gb => m%lnods(loc(2), ie2))
-                     if (.not. ((ga == c1 .and. gb == c2) .or. (ga == c2 .and. gb == c1))) cycle
-                  end associate
-                  if ((nloc == 3) .neqv. (mid /= 0)) then
-                     call errors%add('E-GMSH', 'physical curve "'//msh%groups(g)%name//'": a '// &
-                                     itoa(gmsh_nnode(msh%etype(k)))//'-node line lies on a '// &
-                                     itoa(nloc)//'-node element edge (mesh the curves with the '// &
-                                     'same order as the surfaces)', file=msh%path, line=msh%eline(k))
-                     return
-                  end if
-                  if (nloc == 3) then
-                     if (m%lnods(loc(3), ie2) /= mid) cycle
-                  end if
-                  found = .true.
-                  exit
-               end do
-               if (found) exit
-            end do
-            if (.not. found) then
-               call errors%add('E-GMSH', 'physical curve "'//msh%groups(g)%name//'": line element is not an '// &
+            call find_edge(m, eptr, elist, sorted(msh%enodes(1, k)), sorted(msh%enodes(2, k)), mid, ie2, iedge, nloc)
+            if (ie2 < 0) then
+               call errors%add('E-GMSH', 'physical curve "'//grp%name//'": a '// &
+                               itoa(gmsh_nnode(msh%etype(k)))//'-node line lies on a '// &
+                               itoa(nloc)//'-node element edge (mesh the curves with the '// &
+                               'same order as the surfaces)', file=msh%path, line=msh%eline(k))
+               return
+            else if (ie2 == 0) then
+               call errors%add('E-GMSH', 'physical curve "'//grp%name//'": line element is not an '// &
                                'edge of any 2-D element', file=msh%path, line=msh%eline(k))
                return
             end if
-            nse = nse + 1
             sel = [sel, ie2]
             sed = [sed, iedge]
          end do
-         allocate (nodes(count(inset)))
-         nodes = pack([(q, q=1, npoin)], inset)
-         ! (component by component: gfortran 12 loses deferred-length
-         ! character components in array constructors of derived types)
-         block
-            type(node_set_t), allocatable :: tn(:)
-            type(edge_set_t), allocatable :: te(:)
-            integer :: i
-            allocate (tn(size(m%node_sets) + 1))
-            do i = 1, size(m%node_sets)
-               tn(i)%name = m%node_sets(i)%name
-               tn(i)%nodes = m%node_sets(i)%nodes
-            end do
-            tn(size(tn))%name = msh%groups(g)%name
-            tn(size(tn))%nodes = nodes
-            call move_alloc(tn, m%node_sets)
-            if (msh%groups(g)%dim == 1) then
-               allocate (te(size(m%edge_sets) + 1))
-               do i = 1, size(m%edge_sets)
-                  te(i)%name = m%edge_sets(i)%name
-                  te(i)%ielem = m%edge_sets(i)%ielem
-                  te(i)%iedge = m%edge_sets(i)%iedge
-               end do
-               te(size(te))%name = msh%groups(g)%name
-               te(size(te))%ielem = sel
-               te(size(te))%iedge = sed
-               call move_alloc(te, m%edge_sets)
+         call add_sets(m, grp%name, pack([(q, q=1, m%npoin)], inset), grp%dim == 1, sel, sed)
+      end associate
+   end subroutine build_sets
+
+   !> The edge of a 2-D element with end nodes c1, c2 (either way round) and,
+   !! if mid > 0, midside node mid; the candidates are the elements of c1.
+   !! ie = 0 if there is none; ie = -1 if the first edge with those ends has
+   !! the other order (linear against quadratic; nloc its node count).
+   pure subroutine find_edge(m, eptr, elist, c1, c2, mid, ie, iedge, nloc)
+      type(model_t), intent(in) :: m
+      integer, intent(in) :: eptr(:), elist(:)      !! elements of every node (node_elements)
+      integer, intent(in) :: c1, c2, mid            !! end nodes, midside node (0: a 2-node line)
+      integer, intent(out) :: ie, iedge, nloc
+      integer :: e, ie2, loc(3)
+      ie = 0
+      iedge = 0
+      nloc = 0
+      do e = eptr(c1), eptr(c1 + 1) - 1
+         ie2 = elist(e)
+         do iedge = 1, nedges(m%nnode_e(ie2))
+            call element_edge_nodes(m%nnode_e(ie2), iedge, loc, nloc)
+            associate (ga => m%lnods(loc(1), ie2), gb => m%lnods(loc(2), ie2))
+               if (.not. ((ga == c1 .and. gb == c2) .or. (ga == c2 .and. gb == c1))) cycle
+            end associate
+            if ((nloc == 3) .neqv. (mid /= 0)) then
+               ie = -1
+               return
             end if
-         end block
-      end subroutine build_sets
-   end subroutine gmsh_to_model
+            if (nloc == 3) then
+               if (m%lnods(loc(3), ie2) /= mid) cycle
+            end if
+            ie = ie2
+            return
+         end do
+      end do
+   end subroutine find_edge
+
+   !> Append a node set (and, for a curve, an edge set) called `name`.
+   subroutine add_sets(m, name, nodes, curve, ielem, iedge)
+      type(model_t), intent(inout) :: m
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: nodes(:)
+      logical, intent(in) :: curve                 !! a physical curve: its edges too
+      integer, intent(in) :: ielem(:), iedge(:)    !! the curve's edges
+      type(node_set_t), allocatable :: tn(:)
+      type(edge_set_t), allocatable :: te(:)
+      integer :: i
+      ! (component by component: gfortran 12 loses deferred-length
+      ! character components in array constructors of derived types)
+      allocate (tn(size(m%node_sets) + 1))
+      do i = 1, size(m%node_sets)
+         tn(i)%name = m%node_sets(i)%name
+         tn(i)%nodes = m%node_sets(i)%nodes
+      end do
+      tn(size(tn))%name = name
+      tn(size(tn))%nodes = nodes
+      call move_alloc(tn, m%node_sets)
+      if (.not. curve) return
+      allocate (te(size(m%edge_sets) + 1))
+      do i = 1, size(m%edge_sets)
+         te(i)%name = m%edge_sets(i)%name
+         te(i)%ielem = m%edge_sets(i)%ielem
+         te(i)%iedge = m%edge_sets(i)%iedge
+      end do
+      te(size(te))%name = name
+      te(size(te))%ielem = ielem
+      te(size(te))%iedge = iedge
+      call move_alloc(te, m%edge_sets)
+   end subroutine add_sets
 
    !> Shoelace area of the corner polygon (positive when anticlockwise).
    pure real(dp) function signed_area(m, ie) result(a)

@@ -18,7 +18,7 @@ module group_cards
    use strings, only: itoa, rtoa
    use deck_lexer, only: deck_t
    use model, only: model_t, restraint_t, point_load_t, edge_load_t, find_node_set, find_edge_set
-   use shape_2d, only: element_edge_nodes
+   use topology, only: element_edge_nodes
    implicit none
    private
    public :: is_group_card, read_group_restraint, read_group_point_load, read_group_edge_load, &

@@ -1,10 +1,11 @@
 !> Data of the contact definition: interfaces (the interface law and its
 !! parameters, in model units), contact pairs, and the algorithm options.
-!! Plain data filled by the deck reader and by contact_definition; the laws
-!! themselves live in src/contact/.
+!! Plain data filled by contact_definition from the deck's contact
+!! specification (model/contact_spec, which holds the same interface type
+!! with the constants as given); the laws themselves live in src/contact/.
 !!
 !! Model units: the conversion of the literature constants (µm and kgf/cm²)
-!! is done once, when the deck is read (SPEC §2.4), so that here
+!! is done once, when the model is defined after reading (SPEC §2.4), so that here
 !!     u_n = cn * p^m         (loading, virgin curve)
 !!     k_T^e = p^S / r_t      (elastic tangential stiffness per unit area)
 !! hold with u in the model's length unit and p in its stress unit.
@@ -106,7 +107,7 @@ module contact_types
    !> A zero-length contact element between node a (body A, the slave side)
    !! and a point b of body B (the master side): node b itself (the paper's
    !! two-node spring), the surface of B interpolated from its nodes (averaged
-   !! over the tributary zone of node a, see contact_definition), or a point of
+   !! over the tributary zone of node a, see contact_pairing), or a point of
    !! a rigid profile moved by the rigid body's reference node.  The
    !! local axes (t, n) belong to body B, n points from B into A.  In every
    !! case the displacement of b is u_b = sum_k w(k) u(nodes(k)), k = 2..nn,

@@ -9,6 +9,7 @@
 module model
    use kinds, only: dp
    use contact_types, only: contact_def_t
+   use contact_spec, only: contact_spec_t
    use strings, only: same_name
    implicit none
    private
@@ -99,6 +100,7 @@ module model
       integer, allocatable :: matno(:)       !! material of each element
       integer, allocatable :: node_line(:)   !! deck line of each node card
       integer, allocatable :: elem_line(:)   !! deck line of each element card (.msh line with a MESH block)
+      integer :: restraints_line = 0         !! deck line of the RESTRAINTS keyword (for messages)
       integer, allocatable :: node_tag(:)    !! (npoin) gmsh node tags (MESH block); unallocated for deck meshes
       character(len=:), allocatable :: mesh_file  !! .msh file of a MESH block ('' or unallocated: the deck)
       ! materials, boundary conditions, loads
@@ -112,7 +114,8 @@ module model
       real(dp), allocatable :: lambda(:, :)  !! (ncase, 0:nincs)
       ! ties: (3, ntie) master node, slave node, dof (1 x, 2 y); slaves share the master's equation
       integer, allocatable :: ties(:, :)
-      ! contact interfaces and pairs
+      ! contact: the deck's specification as read, and the interfaces and pairs defined from it
+      type(contact_spec_t) :: contact_spec
       type(contact_def_t) :: contact
       ! named sets (from gmsh physical groups or the deck)
       type(node_set_t), allocatable :: node_sets(:)
