@@ -10,7 +10,7 @@ program kontakt2d
    use model, only: model_t
    use deck_reader, only: read_deck
    use incremental, only: run_options_t, run_result_t, run_analysis
-   use results_hdf5, only: K2D_VERSION
+   use version, only: K2D_VERSION
    implicit none
 
    type(model_t) :: m

@@ -43,7 +43,8 @@ module incremental
    use contact_element, only: pair_stiffness
    use condensation, only: condensed_t
    use restraint_check, only: find_bodies
-   use results_hdf5, only: results_file_t, K2D_VERSION
+   use results_hdf5, only: results_file_t
+   use version, only: K2D_VERSION
    use listing, only: list_header, list_input, list_displacements, list_stresses, list_contact
    use hdf5, only: hid_t
    implicit none

@@ -30,12 +30,12 @@ module results_hdf5
    use model, only: model_t, ntype_name, MAX_NODE
    use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, law_name, &
                             matching_name, rigid_shape_name, MAX_PAIR_NODES
+   use version, only: K2D_VERSION
    use xdmf_writer, only: write_xdmf, xdmf_path, CELL_NNODE, XDMF_CELL_CODE
    implicit none
    private
-   public :: results_file_t, K2D_VERSION
+   public :: results_file_t
 
-   character(len=*), parameter :: K2D_VERSION = '0.1.0'
 
    type :: results_file_t
       integer(hid_t) :: fid = -1
