@@ -38,15 +38,15 @@ module incremental
    use contact_types, only: UPDATE_RETURN, contact_pair_t, MAX_PAIR_NODES, LAW_ROUGH, PAIR_RIGID
    use contact_algorithm, only: contact_state_t, contact_init, begin_increment, pair_matrix, &
                                 evaluate_pairs, commit_increment, pair_force_vector, law_drift, check_invariants, &
-                                augment_multipliers, pair_dofs, start_force_normal, &
-                                NS_OPEN, NS_LOADING, NS_UNLOADING, TS_SLIP
+                                augment_multipliers, pair_dofs, start_force_normal
    use contact_element, only: pair_stiffness
    use condensation, only: condensed_t
    use restraint_check, only: find_bodies
    use results_hdf5, only: results_file_t
    use version, only: K2D_VERSION
-   use listing, only: list_header, list_input, list_displacements, list_stresses, list_contact
-   use hdf5, only: hid_t
+   use listing, only: list_header, list_method, list_input, list_step, list_progress_header, list_progress
+   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, STEP_CONVERGED, STEP_UNSETTLED
+   use contact_fields, only: build_contact_fields, pair_spacing
    implicit none
    private
    public :: run_options_t, run_result_t, run_analysis, recover_stresses
@@ -59,16 +59,15 @@ module incremental
       logical :: quiet = .false.                      !! no terminal output except errors
    end type run_options_t
 
-   !> What a run leaves in memory (used by the tests and the caller).
-   type :: run_result_t
+   !> What a run leaves in memory (used by the tests and the caller): the
+   !! body fields of the last step (disp, react, sig_nd, sig_gp, xygp,
+   !! gp_start), the committed contact states, what the run used, and the
+   !! history of the steps' figures.
+   type, extends(body_fields_t) :: run_result_t
       integer :: completed = 0                   !! increments finished
-      real(dp), allocatable :: disp(:, :)        !! (2, npoin) total displacements
-      real(dp), allocatable :: react(:, :)       !! (2, npoin) reactions
-      real(dp), allocatable :: sig_nd(:, :)      !! (4, npoin) averaged nodal stresses
-      real(dp), allocatable :: sig_gp(:, :)      !! (4, ngp) Gauss-point stresses
-      real(dp), allocatable :: xygp(:, :)        !! (2, ngp)
-      integer, allocatable :: gp_start(:)        !! (nelem+1)
       type(contact_state_t) :: contact           !! committed contact states
+      type(contact_fields_t) :: fields           !! contact fields of the last step (contact models)
+      type(run_info_t) :: info                   !! what the run used (solver, caps, contact system)
       integer, allocatable :: iterations(:)      !! solves per increment
       integer, allocatable :: repeats(:)         !! repeats (mode changes) per increment
       real(dp), allocatable :: residual(:)       !! relative out-of-balance force after each increment
@@ -138,6 +137,7 @@ contains
       character(len=:), allocatable :: solver_name, lis_path, lis_level
       logical :: have_lis, first
       real(dp) :: frac, step, s, force_scale, gap_tol
+      type(step_record_t) :: srec
 
       call system_clock(t0, rate)
       call complete_model(m)
@@ -177,7 +177,6 @@ contains
       ! to converge too
       an%maxrep = max(1, m%contact%opts%max_repeats)
       if (res%contact%has_ideal .and. .not. m%contact%opts%repeats_given) an%maxrep = 100
-      m%contact%opts%max_repeats = an%maxrep          ! as used (result file, listing)
       allocate (body(m%npoin))
       call find_bodies(m, reshape([integer ::], [2, 0]), body, nbody)
       ! a rigid body's reference node belongs to no element: a body of its own
@@ -199,6 +198,8 @@ contains
       ! ---- stress recovery layout (Gauss points are fixed)
       call recover_stresses(m, res%disp, res%gp_start, res%xygp, res%sig_gp, res%sig_nd, status)
       if (.not. status%ok()) return
+      res%restrained = an%restrained
+      call run_information(m, an, res%info)
 
       ! ---- listing, then the result file (nothing is left behind if either fails)
       have_lis = lis_level /= 'NONE'
@@ -209,12 +210,12 @@ contains
             call status%set(STAT_INPUT, 'cannot open the listing file '//lis_path//': '//trim(iomsg))
             return
          end if
-         call list_header(lu, m, K2D_VERSION, an%solver%name(), an%map%neq, an%map%nres)
+         call list_header(lu, m, res%info)
          call write_numbering_report(lu, numbering)
-         call write_method(lu, m, an)
+         call list_method(lu, res%info)
          if (lis_level == 'FULL') call list_input(lu, m)
       end if
-      call rf%create(res%results_path, m, res%gp_start(2:) - res%gp_start(:m%nelem), res%xygp, status)
+      call rf%create(res%results_path, m, res%body_fields_t, status)
       if (.not. status%ok()) then
          ! a result path that cannot be written is a command-line error
          status%code = STAT_INPUT
@@ -222,30 +223,17 @@ contains
          if (have_lis) close (lu, status='delete')
          return
       end if
-      block
-         integer :: err
-         err = 0
-         ! the bounds of the automatic increments, with the increments' `cuts` their history
-         call rf%attr_int(rf%fid, 'autoinc', merge(1, 0, m%autoinc), err)
-         call rf%attr_real0(rf%fid, 'autoinc_min_fraction', m%autoinc_min, err)
-         call rf%attr_int(rf%fid, 'autoinc_easy_solutions', m%autoinc_easy, err)
-         call rf%attr_int(rf%fid, 'condensed', merge(1, 0, an%condensed), err)
-         if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the run attributes')
-      end block
-      if (an%has_contact .and. status%ok()) call rf%write_contact_definition(m%contact, status)
+      call rf%write_run_info(res%info, status)
+      if (an%has_contact .and. status%ok()) call rf%write_contact_definition(m%contact, res%info, status)
       if (.not. status%ok()) return
       if (.not. opts%quiet) then
-         call list_header(stdout, m, K2D_VERSION, an%solver%name(), an%map%neq, an%map%nres)
+         call list_header(stdout, m, res%info)
          call write_numbering_report(stdout, numbering)
-         call write_method(stdout, m, an)
+         call list_method(stdout, res%info)
          write (stdout, '(a)') ' Results      : '//res%results_path
          if (have_lis) write (stdout, '(a)') ' Listing      : '//lis_path
          write (stdout, '(a)') repeat('-', 78)
-         if (an%has_contact) then
-            write (stdout, '(a)') '   inc  load factor     max |u|  closed  slip  solves rep   residual    time [s]'
-         else
-            write (stdout, '(a)') '   inc  load factor     max |u|        sum Rx        sum Ry    time [s]'
-         end if
+         call list_progress_header(stdout, an%has_contact)
       end if
 
       ! ---- the loop over the deck's increments; with AUTOINC each may be cut
@@ -302,9 +290,16 @@ contains
             res%disp = res%disp + att%du
             call record_step(res, att, an%has_contact, m, res%contact)
             if (an%has_contact) call method_warnings(an, m, res, nstep)
+            srec = step_record_t(step=nstep, deck_increment=inc, fraction=frac, cuts=cuts, &
+                                 lambda=m%lambda(:, inc - 1) + (m%lambda(:, inc) - m%lambda(:, inc - 1))*frac, &
+                                 solutions=att%solutions, repeats=att%repeats, residual=res%residual(nstep), &
+                                 drift=res%drift(nstep), penetration=res%penetration(nstep), &
+                                 augmentations=res%augmentations(nstep), &
+                                 status=merge(STEP_CONVERGED, STEP_UNSETTLED, att%converged), contact=an%has_contact, &
+                                 ideal=res%contact%has_ideal, last=inc == m%nincs .and. frac >= 1.0_dp - 1.0e-12_dp)
+            srec%written = srec%last .or. mod(nstep, m%results_every) == 0
             call finish_step(m, an, res, rf, lu, have_lis, lis_level, opts, body, nbody, fext, ve_old, force_scale, &
-                             nstep, inc, frac, cuts, m%lambda(:, inc - 1) + (m%lambda(:, inc) - m%lambda(:, inc - 1))*frac, &
-                             inc == m%nincs .and. frac >= 1.0_dp - 1.0e-12_dp, t0, rate, status)
+                             srec, t0, rate, status)
             if (.not. status%ok()) exit deck
             cuts = 0
             if (m%autoinc .and. att%solutions <= m%autoinc_easy .and. .not. res%contact%chatter) &
@@ -403,14 +398,7 @@ contains
             an%peq(2*k - 1:2*k, j) = an%map%id(:, m%contact%pairs(j)%nodes(k))
          end do
       end do
-      allocate (an%spacing(an%npair))
-      an%spacing = huge(1.0_dp)
-      do j = 1, an%npair
-         do k = 1, an%npair
-            if (k == j) cycle
-            an%spacing(j) = min(an%spacing(j), norm2(m%contact%pairs(k)%position - m%contact%pairs(j)%position))
-         end do
-      end do
+      an%spacing = pair_spacing(m%contact%pairs)
       an%condensed = .false.
       if (an%has_contact) then
          select case (m%condense)
@@ -847,7 +835,7 @@ contains
 
    !> Post-processing, checks, output and progress of an accepted step.
    subroutine finish_step(m, an, res, rf, lu, have_lis, lis_level, opts, body, nbody, fext, ve_old, force_scale, &
-                          nstep, inc, frac, cuts, lambda, last, t0, rate, status)
+                          srec, t0, rate, status)
       type(model_t), intent(in) :: m
       type(analysis_t), intent(in) :: an
       type(run_result_t), intent(inout) :: res
@@ -859,18 +847,16 @@ contains
       integer, intent(in) :: body(:), nbody
       real(dp), intent(in) :: fext(:, :), ve_old(:)
       real(dp), intent(inout) :: force_scale
-      integer, intent(in) :: nstep, inc, cuts
-      real(dp), intent(in) :: frac, lambda(:)
-      logical, intent(in) :: last
+      type(step_record_t), intent(inout) :: srec
       integer(i8), intent(in) :: t0, rate
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: fr(:, :), fsp(:, :)
       real(dp) :: r(2*MAX_PAIR_NODES), imb
-      integer :: j, k, nbad, err
+      integer :: j, k, nbad, nstep
       integer(i8) :: t1
-      integer(hid_t) :: gid
       character(len=:), allocatable :: imsg
 
+      nstep = srec%step
       call recover_stresses(m, res%disp, res%gp_start, res%xygp, res%sig_gp, res%sig_nd, status)
       if (.not. status%ok()) return
       allocate (fr(2, m%npoin), fsp(2, m%npoin))
@@ -900,82 +886,44 @@ contains
       res%violations = [res%violations, nbad]
       if (nbad > 0) write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(nstep)//': '//itoa(nbad)// &
          ' invariant violation(s): '//imsg
+      srec%imbalance = imb
+      srec%violations = nbad
+      if (an%has_contact) call build_contact_fields(m%contact, res%contact, res%fields)
 
       ! OPTIONS RESULTS n: only every n-th step and the last go into the result file
-      if (.not. (last .or. mod(nstep, m%results_every) == 0)) then
-         res%completed = nstep
-         call list_and_report()
-         return
+      if (srec%written) then
+         call rf%write_increment(srec, res%body_fields_t, status, res%fields)
+         if (.not. status%ok()) return
       end if
-      call rf%open_increment(nstep, lambda, res%iterations(nstep), res%repeats(nstep), .true., gid, status)
-      if (.not. status%ok()) return
-      err = 0
-      call rf%write_real2(gid, 'displacement', res%disp, err)
-      call rf%write_real2(gid, 'stress_nodal', res%sig_nd, err)
-      call rf%write_real2(gid, 'stress_gauss', res%sig_gp, err)
-      call rf%write_real2(gid, 'reaction', res%react, err)
-      if (an%has_contact) call rf%attr_real0(gid, 'residual', res%residual(nstep), err)
-      if (an%has_contact) call rf%attr_real0(gid, 'law_drift', res%drift(nstep), err)
-      if (res%contact%has_ideal) call rf%attr_real0(gid, 'penetration', res%penetration(nstep), err)
-      if (res%contact%has_ideal) call rf%attr_int(gid, 'augmentations', res%augmentations(nstep), err)
-      call rf%attr_real0(gid, 'imbalance', imb, err)
-      call rf%attr_int(gid, 'invariant_violations', nbad, err)
-      call rf%attr_int(gid, 'deck_increment', inc, err)
-      call rf%attr_real0(gid, 'deck_increment_fraction', frac, err)
-      call rf%attr_int(gid, 'cuts', cuts, err)
-      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(nstep))
-      if (an%has_contact .and. status%ok()) call write_contact_results(rf, gid, m, res%contact, status)
-      if (.not. status%ok()) return
-      call rf%close_increment(gid, status)
-      if (.not. status%ok()) return
       res%completed = nstep
-      call list_and_report()
-   contains
-      !> The listing of the step (FULL, or the last) and its progress line.
-      subroutine list_and_report()
-         if (have_lis .and. (lis_level == 'FULL' .or. last)) then
-            call list_displacements(lu, m, nstep, lambda, res%disp, res%react, an%restrained)
-            if (an%has_contact) call list_contact(lu, m%contact, res%contact, res%iterations(nstep), &
-                                                  res%repeats(nstep), res%residual(nstep), res%drift(nstep))
-            call list_stresses(lu, m, res%gp_start, res%xygp, res%sig_gp)
-         end if
-         call system_clock(t1)
-         if (.not. opts%quiet) then
-            if (an%has_contact) then
-               write (stdout, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') nstep, maxval(abs(lambda)), &
-                  maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), count(res%contact%s%closed), &
-                  count(res%contact%s%closed .and. res%contact%s%tstate == TS_SLIP), res%iterations(nstep), &
-                  res%repeats(nstep), res%residual(nstep), real(t1 - t0, dp)/real(rate, dp)
-            else
-               write (stdout, '(i6, f13.5, 3es14.5, f12.3)') nstep, maxval(abs(lambda)), &
-                  maxval(sqrt(res%disp(1, :)**2 + res%disp(2, :)**2)), sum(res%react(1, :)), &
-                  sum(res%react(2, :)), real(t1 - t0, dp)/real(rate, dp)
-            end if
-            flush (stdout)
-         end if
-      end subroutine list_and_report
+      if (have_lis .and. (lis_level == 'FULL' .or. srec%last)) call list_step(lu, m, srec, res%body_fields_t, res%fields)
+      call system_clock(t1)
+      if (.not. opts%quiet) then
+         call list_progress(stdout, srec, res%body_fields_t, real(t1 - t0, dp)/real(rate, dp), res%fields)
+         flush (stdout)
+      end if
    end subroutine finish_step
 
-   !> The method in use, for the header of the listing and the terminal.
-   subroutine write_method(u, m, an)
-      integer, intent(in) :: u
+   !> What the run uses, for the headers and the result file.
+   subroutine run_information(m, an, info)
       type(model_t), intent(in) :: m
       type(analysis_t), intent(in) :: an
-      character(len=:), allocatable :: s
-      if (.not. an%has_contact) return
-      if (.not. an%returning) then
-         s = 'incremental (the paper: explicit update, repeats on state changes)'
-      else if (an%modified) then
-         s = 'modified Newton (return to the laws, stiffness kept)'
-      else
-         s = 'Newton (return to the laws, tangent every solution)'
-      end if
-      write (u, '(a)') ' Contact      : '//itoa(an%npair)//' pairs, '//s
-      if (an%condensed) write (u, '(a)') ' Condensed    : bodies condensed onto '//itoa(an%cond%nc)// &
-         ' contact equations (one factorization of the bodies)'
-      if (m%autoinc) write (u, '(a)') ' Increments   : automatic (cut on failure or chatter, smallest step '// &
-         rtoa(m%autoinc_min)//' of a deck increment)'
-   end subroutine write_method
+      type(run_info_t), intent(out) :: info
+      info%solver = an%solver%name()
+      info%neq = an%map%neq
+      info%nres = an%map%nres
+      info%npair = an%npair
+      info%system = ''
+      info%returning = an%returning
+      info%modified = an%modified
+      if (an%condensed) info%system = 'Condensed    : bodies condensed onto '//itoa(an%cond%nc)// &
+                                      ' contact equations (one factorization of the bodies)'
+      info%condensed = an%condensed
+      info%max_repeats = an%maxrep
+      info%autoinc = m%autoinc
+      info%autoinc_min = m%autoinc_min
+      info%autoinc_easy = m%autoinc_easy
+   end subroutine run_information
 
    !> Largest |sum of the forces on a body| relative to the force scale of the run.
    !! In axisymmetry only the axial resultant must vanish: the radial ring forces
@@ -1126,78 +1074,6 @@ contains
          end do
       end function resultant
    end subroutine start_pressure
-
-   !> Contact quantities of one increment into its group `contact`.
-   subroutine write_contact_results(rf, gid, m, st, status)
-      type(results_file_t), intent(inout) :: rf
-      integer(hid_t), intent(in) :: gid
-      type(model_t), intent(in) :: m
-      type(contact_state_t), intent(in) :: st
-      type(status_t), intent(inout) :: status
-      real(dp), allocatable :: area(:), pn(:), pt(:)
-      integer, allocatable :: nstate(:), tstate(:)
-      integer :: j, np
-      np = size(m%contact%pairs)
-      allocate (area(np), pn(np), pt(np), nstate(np), tstate(np))
-      area = m%contact%pairs%area
-      where (area > 0.0_dp)
-         pn = st%s%fn/area
-         pt = st%s%ft/area
-      elsewhere
-         pn = 0.0_dp
-         pt = 0.0_dp
-      end where
-      call extrapolate_zero_area(m, pn)
-      call extrapolate_zero_area(m, pt)
-      do j = 1, np
-         if (.not. st%s(j)%closed) then
-            nstate(j) = NS_OPEN
-         else if (st%s(j)%on_unloading) then
-            nstate(j) = NS_UNLOADING
-         else
-            nstate(j) = NS_LOADING
-         end if
-         tstate(j) = st%s(j)%tstate
-      end do
-      call rf%write_contact_increment(gid, pn, pt, st%s%fn, st%s%ft, st%s%un, st%s%ut, st%s%utp, &
-                                      st%s%utp_gross, st%s%ve, st%s%mu, nstate, tstate, st%s%kn, st%s%kt, status)
-   end subroutine write_contact_results
-
-   !> Pairs of zero area (a quadratic axisymmetric edge on the axis) carry no
-   !! spring; report their stress by linear extrapolation from the two
-   !! nearest pairs of the same interface (SPEC §3.2 caveat).
-   subroutine extrapolate_zero_area(m, v)
-      type(model_t), intent(in) :: m
-      real(dp), intent(inout) :: v(:)
-      integer :: j, k, k1, k2
-      real(dp) :: d, d1, d2
-      do j = 1, size(v)
-         if (m%contact%pairs(j)%area > 0.0_dp) cycle
-         k1 = 0
-         k2 = 0
-         d1 = huge(1.0_dp)
-         d2 = huge(1.0_dp)
-         do k = 1, size(v)
-            if (k == j .or. m%contact%pairs(k)%area <= 0.0_dp) cycle
-            if (m%contact%pairs(k)%iface /= m%contact%pairs(j)%iface) cycle
-            d = norm2(m%contact%pairs(k)%position - m%contact%pairs(j)%position)
-            if (d < d1) then
-               k2 = k1
-               d2 = d1
-               k1 = k
-               d1 = d
-            else if (d < d2) then
-               k2 = k
-               d2 = d
-            end if
-         end do
-         if (k1 > 0 .and. k2 > 0 .and. d2 > d1) then
-            v(j) = v(k1) + (v(k1) - v(k2))*d1/(d2 - d1)
-         else if (k1 > 0) then
-            v(j) = v(k1)
-         end if
-      end do
-   end subroutine extrapolate_zero_area
 
    !> Stresses at every Gauss point and averaged at the nodes.
    subroutine recover_stresses(m, disp, gp_start, xygp, sig_gp, sig_nd, status)
