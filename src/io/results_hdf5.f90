@@ -7,7 +7,7 @@
 !!                             analysis_type, ntype, ncase, status,
 !!                             increments_completed; the run information
 !!                             (autoinc, autoinc_min_fraction,
-!!                             autoinc_easy_solutions, condensed)
+!!                             autoinc_easy_solutions, condensed, max_repeats)
 !!     /mesh/coordinates       (npoin, 2)   x, y  (r, z in axisymmetry)
 !!     /mesh/connectivity      (nelem, 9)   1-based node numbers, zero padded
 !!     /mesh/element_nodes     (nelem)      3, 4, 8 or 9
@@ -348,8 +348,9 @@ contains
    end function results_increments_completed
 
    !> Root attributes of the run: the bounds of the automatic increments
-   !! (with the increments' `cuts` their history) and whether the bodies were
-   !! condensed onto the contact equations.
+   !! (with the increments' `cuts` their history), whether the bodies were
+   !! condensed onto the contact equations and, for a contact model, the cap
+   !! on solutions per increment the run used.
    subroutine results_run_info(this, info, status)
       class(results_file_t), intent(inout) :: this
       type(run_info_t), intent(in) :: info
@@ -360,6 +361,7 @@ contains
       call attr_real0(this%fid, 'autoinc_min_fraction', info%autoinc_min, err)
       call attr_int(this%fid, 'autoinc_easy_solutions', info%autoinc_easy, err)
       call attr_int(this%fid, 'condensed', merge(1, 0, info%condensed), err)
+      if (info%npair > 0) call attr_int(this%fid, 'max_repeats', info%max_repeats, err)
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the run attributes')
    end subroutine results_run_info
 
