@@ -11,7 +11,7 @@ program kontakt2d
    use model, only: model_t
    use model_input, only: read_model
    use incremental, only: run_options_t, run_result_t, run_analysis
-   use results_hdf5, only: K2D_VERSION
+   use version, only: K2D_VERSION
    use parallel, only: parallel_init
    implicit none
 

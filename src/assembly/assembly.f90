@@ -18,7 +18,7 @@ module assembly
    implicit none
    private
    public :: coupling_t, assemble_bodies, assemble_load_cases, element_equations, &
-             subtract_prescribed, restrained_forces, element_error
+             subtract_prescribed, restrained_forces, element_error, load_increment
 
    !> Stiffness entries with a restrained row or column (COO).
    type :: coupling_t
@@ -62,19 +62,23 @@ contains
       end select
    end function element_error
 
-   !> Add every element's stiffness to the solver; keep restrained couplings.
-   subroutine assemble_bodies(m, map, solver, coup, status)
+   !> Add every element's stiffness to the solver; keep restrained couplings;
+   !! optionally the diagonal of K_AB on the free equations (the stiffness
+   !! scale of the bodies at each equation).
+   subroutine assemble_bodies(m, map, solver, coup, status, diag)
       type(model_t), intent(in) :: m
       type(dof_map_t), intent(in) :: map
       class(linear_solver_t), intent(inout) :: solver
       type(coupling_t), intent(out) :: coup
       type(status_t), intent(inout) :: status
+      real(dp), intent(out), optional :: diag(:)   !! (neq) diagonal of K_AB
       real(dp) :: estif(2*MAX_NODE, 2*MAX_NODE), elcod(2, MAX_NODE)
       integer :: ieq(2*MAX_NODE), gdof(2*MAX_NODE), ie, nn, nevab, ierr, i, j
       integer :: imat
 
       allocate (coup%row(1024), coup%col(1024), coup%val(1024))
       coup%n = 0
+      if (present(diag)) diag = 0.0_dp
       do ie = 1, m%nelem
          nn = m%nnode_e(ie)
          imat = m%matno(ie)
@@ -87,6 +91,11 @@ contains
          end if
          call element_equations(m, map, ie, ieq, gdof, nevab)
          call solver%add_element(ieq(1:nevab), estif(1:nevab, 1:nevab))
+         if (present(diag)) then
+            do i = 1, nevab
+               if (ieq(i) > 0) diag(ieq(i)) = diag(ieq(i)) + estif(i, i)
+            end do
+         end if
          do j = 1, nevab
             do i = 1, nevab
                if (ieq(i) < 0 .or. ieq(j) < 0) then
@@ -176,6 +185,32 @@ contains
          end associate
       end do
    end subroutine assemble_load_cases
+
+   !> Right-hand side and prescribed displacements of a load increment dlam:
+   !! rhs = carry + the forces of the load cases, minus K_fr du_r for the
+   !! prescribed displacement increments du_r, which go to du.
+   subroutine load_increment(coup, map, fcase, ucase, restrained, dlam, carry, rhs, du)
+      type(coupling_t), intent(in) :: coup
+      type(dof_map_t), intent(in) :: map
+      real(dp), intent(in) :: fcase(:, :, :)  !! (2, npoin, ncase) external forces at factor 1
+      real(dp), intent(in) :: ucase(:, :, :)  !! (2, npoin, ncase) prescribed displacements at factor 1
+      logical, intent(in) :: restrained(:, :) !! (2, npoin)
+      real(dp), intent(in) :: dlam(:)         !! (ncase) increments of the load factors
+      real(dp), intent(in) :: carry(:)        !! (neq) out-of-balance force carried from the last increment
+      real(dp), intent(out) :: rhs(:)         !! (neq)
+      real(dp), intent(inout) :: du(:, :)     !! (2, npoin) zero in, prescribed increments out
+      integer :: ic, ip, idof
+      rhs = carry
+      do ic = 1, size(dlam)
+         where (restrained) du = du + dlam(ic)*ucase(:, :, ic)
+      end do
+      do ip = 1, size(du, 2)
+         do idof = 1, 2
+            if (map%id(idof, ip) > 0) rhs(map%id(idof, ip)) = rhs(map%id(idof, ip)) + sum(dlam*fcase(idof, ip, :))
+         end do
+      end do
+      call subtract_prescribed(coup, map, du, rhs)
+   end subroutine load_increment
 
    !> rhs(free) -= K_fr u_r: move prescribed displacements to the right-hand side.
    pure subroutine subtract_prescribed(coup, map, u, rhs)

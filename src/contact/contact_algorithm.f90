@@ -55,6 +55,8 @@ module contact_algorithm
                            normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient, &
                            bilinear_return
    use contact_element, only: pair_stiffness, pair_kinematics, pair_forces
+   ! the state codes are those of the contact fields record (model layer)
+   use records, only: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    implicit none
    private
 
@@ -64,8 +66,6 @@ module contact_algorithm
              start_force_normal
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
 
-   integer, parameter :: NS_OPEN = 0, NS_LOADING = 1, NS_UNLOADING = 2
-   integer, parameter :: TS_STICK = 0, TS_PLASTIC = 1, TS_SLIP = 2
    integer, parameter :: MAX_SWITCH = 6   !! mode changes of one pair within one increment
 
    !> Committed state of one pair (end of an increment).

@@ -13,9 +13,8 @@ module equation_numbering
    use strings, only: itoa, rtoa, upper
    use model, only: model_t
    use dof_map, only: dof_map_t, build_dof_map
-   use graph, only: build_node_graph, build_equation_graph
    use renumber, only: rcm_order, RENUMBER_AUTO, RENUMBER_RCM, RENUMBER_NONE
-   use skyline_solver, only: graph_profile
+   use graph, only: build_node_graph, build_equation_graph, graph_profile
    implicit none
    private
    public :: numbering_report_t, number_equations, write_numbering_report

@@ -1,42 +1,67 @@
-!> Printed listing in the style of Hinton & Owen's OUTPUT routine.
+!> Printed listing in the style of Hinton & Owen's OUTPUT routine, and the
+!! terminal's header and progress lines.
 !!
 !! Three levels: NONE (no listing file), SHORT (input summary and the results
 !! of the last increment), FULL (echo of the whole input and the results of
 !! every increment).  The terminal only gets a summary and one progress line
-!! per increment (written by the driver).
+!! per increment.  Everything printed after the input comes from the records
+!! of the run (run information, step record, body and contact fields), the
+!! same the result file is written from.
 !!
 !! Ref: Hinton & Owen (1977), OUTPUT.
 module listing
    use kinds, only: dp, pi
-   use strings, only: itoa
+   use strings, only: itoa, rtoa
+   use version, only: K2D_VERSION
    use model, only: model_t, ntype_name
    use contact_types, only: contact_def_t
-   use contact_algorithm, only: contact_state_t, TS_STICK, TS_PLASTIC, TS_SLIP
+   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, NS_OPEN, NS_UNLOADING, &
+                      TS_STICK, TS_PLASTIC, TS_SLIP
    implicit none
    private
-   public :: list_header, list_input, list_displacements, list_stresses, principal_stresses, list_contact
+   public :: list_header, list_method, list_input, list_step, list_displacements, list_stresses, &
+             principal_stresses, list_contact, list_progress_header, list_progress
+   public :: list_completed, list_failed, list_drift_note, list_sliding_warning, list_chatter_warning
 
 contains
 
    !> Program banner and the control data.
-   subroutine list_header(u, m, version, solver_name, neq, nres)
+   subroutine list_header(u, m, info)
       integer, intent(in) :: u
       type(model_t), intent(in) :: m
-      character(len=*), intent(in) :: version, solver_name
-      integer, intent(in) :: neq, nres
+      type(run_info_t), intent(in) :: info
       write (u, '(a)') repeat('=', 78)
-      write (u, '(a)') ' Kontakt2D '//version//' - static 2D contact of rough elastic bodies'
+      write (u, '(a)') ' Kontakt2D '//K2D_VERSION//' - static 2D contact of rough elastic bodies'
       write (u, '(a)') repeat('=', 78)
       write (u, '(a)') ' Title        : '//m%title
       write (u, '(a)') ' Deck         : '//m%deck_file
       write (u, '(a)') ' Analysis     : '//ntype_name(m%ntype)
       write (u, '(a,i0,a,i0,a,i0)') ' Nodes        : ', m%npoin, '   elements: ', m%nelem, &
          '   materials: ', m%nmats
-      write (u, '(a,i0,a,i0,a,i0)') ' Equations    : ', neq, '   restrained dofs: ', nres, &
+      write (u, '(a,i0,a,i0,a,i0)') ' Equations    : ', info%neq, '   restrained dofs: ', info%nres, &
          '   load cases: ', m%ncase
       write (u, '(a,i0)') ' Increments   : ', m%nincs
-      write (u, '(a)') ' Solver       : '//solver_name
+      write (u, '(a)') ' Solver       : '//info%solver
    end subroutine list_header
+
+   !> The method in use: contact scheme, contact system, automatic increments.
+   subroutine list_method(u, info)
+      integer, intent(in) :: u
+      type(run_info_t), intent(in) :: info
+      character(len=:), allocatable :: scheme
+      if (info%npair == 0) return
+      if (.not. info%returning) then
+         scheme = 'incremental (the paper: explicit update, repeats on state changes)'
+      else if (info%modified) then
+         scheme = 'modified Newton (return to the laws, stiffness kept)'
+      else
+         scheme = 'Newton (return to the laws, tangent every solution)'
+      end if
+      write (u, '(a)') ' Contact      : '//itoa(info%npair)//' pairs, '//scheme
+      if (len(info%system) > 0) write (u, '(a)') ' '//info%system
+      if (info%autoinc) write (u, '(a)') ' Increments   : automatic (cut on failure or chatter, smallest step '// &
+         rtoa(info%autoinc_min)//' of a deck increment)'
+   end subroutine list_method
 
    !> Echo of the input data (FULL listing).
    subroutine list_input(u, m)
@@ -94,29 +119,40 @@ contains
       end do
    end subroutine list_input
 
-   !> Displacements and reactions of one increment.
-   subroutine list_displacements(u, m, inc, lambda, disp, react, restrained)
+   !> The results of one step: displacements and reactions, the contact
+   !! table (contact models), the Gauss-point stresses.
+   subroutine list_step(u, m, step, body, contact)
       integer, intent(in) :: u
       type(model_t), intent(in) :: m
-      integer, intent(in) :: inc
-      real(dp), intent(in) :: lambda(:)
-      real(dp), intent(in) :: disp(:, :), react(:, :)
-      logical, intent(in) :: restrained(:, :)   !! (2, npoin)
+      type(step_record_t), intent(in) :: step
+      type(body_fields_t), intent(in) :: body
+      type(contact_fields_t), intent(in), optional :: contact   !! listed when step%contact
+      call list_displacements(u, m, step, body)
+      if (step%contact .and. present(contact)) call list_contact(u, m%contact, step, contact)
+      call list_stresses(u, m, body%gp_start, body%xygp, body%sig_gp)
+   end subroutine list_step
+
+   !> Displacements and reactions of one step.
+   subroutine list_displacements(u, m, step, body)
+      integer, intent(in) :: u
+      type(model_t), intent(in) :: m
+      type(step_record_t), intent(in) :: step
+      type(body_fields_t), intent(in) :: body
       integer :: ip
       write (u, '(/a)') repeat('-', 78)
-      write (u, '(a,i0,a,6f11.5)') ' INCREMENT ', inc, '   load factor(s):', lambda
+      write (u, '(a,i0,a,6f11.5)') ' INCREMENT ', step%step, '   load factor(s):', step%lambda
       write (u, '(a)') repeat('-', 78)
       write (u, '(/a)') ' DISPLACEMENTS'
       write (u, '(a)') '   NODE          X-DISP          Y-DISP'
       do ip = 1, m%npoin
-         write (u, '(i7, 2es16.7)') ip, disp(:, ip)
+         write (u, '(i7, 2es16.7)') ip, body%disp(:, ip)
       end do
       write (u, '(/a)') ' REACTIONS'
       write (u, '(a)') '   NODE         X-FORCE         Y-FORCE'
       do ip = 1, m%npoin
-         if (any(restrained(:, ip))) write (u, '(i7, 2es16.7)') ip, react(:, ip)
+         if (any(body%restrained(:, ip))) write (u, '(i7, 2es16.7)') ip, body%react(:, ip)
       end do
-      write (u, '(a, 2es16.7)') '  TOTAL', sum(react(1, :)), sum(react(2, :))
+      write (u, '(a, 2es16.7)') '  TOTAL', sum(body%react(1, :)), sum(body%react(2, :))
    end subroutine list_displacements
 
    !> Gauss-point stresses with principal values (STRESS of Hinton & Owen).
@@ -139,31 +175,32 @@ contains
       end do
    end subroutine list_stresses
 
-   !> Contact table of one increment: one line per pair.
-   subroutine list_contact(u, c, st, iterations, repeats, residual, drift)
+   !> Contact table of one step: one line per pair.  The stresses of pairs of
+   !! zero area are listed as zero (the result file extrapolates them).
+   subroutine list_contact(u, c, step, cf)
       integer, intent(in) :: u
       type(contact_def_t), intent(in) :: c
-      type(contact_state_t), intent(in) :: st
-      integer, intent(in) :: iterations, repeats
-      real(dp), intent(in) :: residual, drift
+      type(step_record_t), intent(in) :: step
+      type(contact_fields_t), intent(in) :: cf
       integer :: j
       character(len=5) :: ns, ts
       real(dp) :: pn, pt
       write (u, '(/a)') ' CONTACT PAIRS'
-      write (u, '(a,i0,a,i0,a,es10.3,a,es10.3)') '   solutions: ', iterations, '   repeats: ', repeats, &
-         '   out-of-balance: ', residual, '   normal-law drift: ', drift
+      write (u, '(a,i0,a,i0,a,es10.3,a,es10.3)') '   solutions: ', step%solutions, '   repeats: ', step%repeats, &
+         '   out-of-balance: ', step%residual, '   normal-law drift: ', step%drift
       write (u, '(a)') '   PAIR  NODE-A  NODE-B     X-COORD     Y-COORD        AREA    PRESSURE       SHEAR'// &
          '     CLOSURE        SLIP  SLIP-IRREV    MU  NORM  TANG'
       do j = 1, size(c%pairs)
-         associate (p => c%pairs(j), s => st%s(j))
-            if (.not. s%closed) then
+         associate (p => c%pairs(j))
+            select case (cf%normal_state(j))
+            case (NS_OPEN)
                ns = 'open'
-            else if (s%on_unloading) then
+            case (NS_UNLOADING)
                ns = 'unld'
-            else
+            case default
                ns = 'load'
-            end if
-            select case (s%tstate)
+            end select
+            select case (cf%tangential_state(j))
             case (TS_STICK)
                ts = 'stick'
             case (TS_PLASTIC)
@@ -171,19 +208,106 @@ contains
             case (TS_SLIP)
                ts = 'slip'
             end select
-            if (.not. s%closed) ts = '-'
+            if (cf%normal_state(j) == NS_OPEN) ts = '-'
             pn = 0.0_dp
             pt = 0.0_dp
             if (p%area > 0.0_dp) then
-               pn = s%fn/p%area
-               pt = s%ft/p%area
+               pn = cf%pressure(j)
+               pt = cf%shear(j)
             end if
             write (u, '(i7, 2i8, 8es12.4, f6.3, 2(1x,a5))') j, p%node_a, p%node_b, p%position, p%area, pn, pt, &
-               s%un, s%ut, s%utp, s%mu, ns, ts
+               cf%closure(j), cf%slip(j), cf%slip_irreversible(j), cf%friction(j), ns, ts
          end associate
       end do
-      write (u, '(a,es14.6,a,es14.6)') '   sum of normal forces:', sum(st%s%fn), '   of tangential forces:', sum(st%s%ft)
+      write (u, '(a,es14.6,a,es14.6)') '   sum of normal forces:', sum(cf%force_normal), '   of tangential forces:', &
+         sum(cf%force_tangential)
    end subroutine list_contact
+
+   !> Column titles of the terminal's progress lines.
+   subroutine list_progress_header(u, contact)
+      integer, intent(in) :: u
+      logical, intent(in) :: contact          !! a contact model
+      if (contact) then
+         write (u, '(a)') '   inc  load factor     max |u|  closed  slip  solves rep   residual    time [s]'
+      else
+         write (u, '(a)') '   inc  load factor     max |u|        sum Rx        sum Ry    time [s]'
+      end if
+   end subroutine list_progress_header
+
+   !> One progress line for the terminal.
+   subroutine list_progress(u, step, body, seconds, contact)
+      integer, intent(in) :: u
+      type(step_record_t), intent(in) :: step
+      type(body_fields_t), intent(in) :: body
+      real(dp), intent(in) :: seconds                           !! elapsed since the start of the run
+      type(contact_fields_t), intent(in), optional :: contact   !! used when step%contact
+      if (step%contact .and. present(contact)) then
+         write (u, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') step%step, maxval(abs(step%lambda)), &
+            maxval(sqrt(body%disp(1, :)**2 + body%disp(2, :)**2)), count(contact%normal_state /= NS_OPEN), &
+            count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), step%solutions, &
+            step%repeats, step%residual, seconds
+      else
+         write (u, '(i6, f13.5, 3es14.5, f12.3)') step%step, maxval(abs(step%lambda)), &
+            maxval(sqrt(body%disp(1, :)**2 + body%disp(2, :)**2)), sum(body%react(1, :)), &
+            sum(body%react(2, :)), seconds
+      end if
+   end subroutine list_progress
+
+   !> The terminal's last lines of a completed run.
+   subroutine list_completed(u, completed, results_path)
+      integer, intent(in) :: u
+      integer, intent(in) :: completed               !! steps finished
+      character(len=*), intent(in) :: results_path
+      write (u, '(a)') repeat('-', 78)
+      write (u, '(a)') ' Completed '//itoa(completed)//' increment(s); results in '//results_path
+   end subroutine list_completed
+
+   !> Where a failed run stopped and what its result file keeps (error unit).
+   subroutine list_failed(u, completed, message, results_path, results_every)
+      integer, intent(in) :: u
+      integer, intent(in) :: completed               !! steps finished before the failure
+      character(len=*), intent(in) :: message        !! why
+      character(len=*), intent(in) :: results_path
+      integer, intent(in) :: results_every           !! OPTIONS RESULTS
+      write (u, '(a)') 'kontakt2d: increment '//itoa(completed + 1)//' failed: '//message
+      if (results_every > 1) then
+         write (u, '(a)') 'kontakt2d: '//itoa(completed)//' increment(s) completed; '// &
+            results_path//' keeps one in '//itoa(results_every)//' (OPTIONS RESULTS), the last '// &
+            'of them increment '//itoa((completed/results_every)*results_every)
+      else
+         write (u, '(a)') 'kontakt2d: '//itoa(completed)//' completed increment(s) are kept in '//results_path
+      end if
+   end subroutine list_failed
+
+   !> The drift of the paper's explicit scheme (SPEC §4.2), so that it is never
+   !! silent: a note when normal spring forces left their law by over 5 %.
+   subroutine list_drift_note(u, drift)
+      integer, intent(in) :: u
+      real(dp), intent(in) :: drift(:)               !! law drift of every step
+      if (size(drift) == 0) return
+      if (maxval(drift) > 0.05_dp) write (u, '(a)') 'kontakt2d: note: the incremental scheme '// &
+         'left normal spring forces up to '//rtoa(100.0_dp*maxval(drift), '(f6.1)')//' % (increment '// &
+         itoa(maxloc(drift, 1))//') off the interface law (attribute law_drift); more increments '// &
+         'reduce this, CONTACT SCHEME NEWTON removes it'
+   end subroutine list_drift_note
+
+   !> Warning: a pair slid more than 10 % of the pair spacing.
+   subroutine list_sliding_warning(u, step, pair, slip, spacing)
+      integer, intent(in) :: u, step, pair
+      real(dp), intent(in) :: slip, spacing          !! |u_T| of the pair, distance to the nearest pair
+      write (u, '(a)') 'kontakt2d: warning: increment '//itoa(step)//': pair '//itoa(pair)// &
+         ' has slid '//rtoa(slip)//', more than 10 % of the pair spacing ('// &
+         rtoa(spacing)//'): node-to-node contact assumes small sliding (the partners '// &
+         'must stay opposite each other); refine the contact mesh or use stiffer roughness data'
+   end subroutine list_sliding_warning
+
+   !> Warning: the springs' states were frozen after max_switch changes.
+   subroutine list_chatter_warning(u, step, max_switch)
+      integer, intent(in) :: u, step, max_switch
+      write (u, '(a)') 'kontakt2d: warning: increment '//itoa(step)//': contact springs kept switching '// &
+         'their states (chatter); their states were frozen after '//itoa(max_switch)//' changes and the increment '// &
+         'accepted; use smaller increments or OPTIONS AUTOINC'
+   end subroutine list_chatter_warning
 
    !> In-plane principal stresses and the angle (degrees) of the first from x.
    pure subroutine principal_stresses(sig, s1, s2, angle)

@@ -1,22 +1,39 @@
 !> HDF5 result file: the mesh once, then one group per increment.
 !!
-!! Layout (documented in docs/results-format.md; shapes as seen from C/Python):
+!! The only module that knows HDF5 and the names of the layout (documented in
+!! docs/results-format.md; shapes as seen from C/Python):
 !!
 !!     /                       attributes: program, version, title, deck,
 !!                             analysis_type, ntype, ncase, status,
-!!                             increments_completed
+!!                             increments_completed; the run information
+!!                             (autoinc, autoinc_min_fraction,
+!!                             autoinc_easy_solutions, condensed, max_repeats)
 !!     /mesh/coordinates       (npoin, 2)   x, y  (r, z in axisymmetry)
 !!     /mesh/connectivity      (nelem, 9)   1-based node numbers, zero padded
 !!     /mesh/element_nodes     (nelem)      3, 4, 8 or 9
 !!     /mesh/material          (nelem)
 !!     /mesh/gauss_coordinates (ngp, 2)     Gauss points of all elements
 !!     /mesh/gauss_element     (ngp)        element of each Gauss point
-!!     /increments/NNNNN/      attributes: increment, load_factor(ncase),
-!!                             iterations, repeats, converged
+!!     /contact                the contact definition (contact models)
+!!     /increments/NNNNN/      attributes from the step record: increment,
+!!                             load_factor(ncase), iterations, repeats,
+!!                             converged, residual, law_drift, ...
 !!         displacement  (npoin, 2)
 !!         stress_nodal  (npoin, 4)  xx, yy, xy, zz (hoop in axisymmetry)
 !!         stress_gauss  (ngp, 4)
 !!         reaction      (npoin, 2)  zero at free dofs
+!!         contact/      the contact fields record (contact models)
+!!
+!! Life cycle, layout-level calls only (the caller holds no HDF5 handle):
+!!
+!!     call rf%create(path, m, body, status)          ! the mesh, status "running"
+!!     call rf%write_run_info(info, status)           ! root attributes of the run
+!!     call rf%write_contact_definition(c, info, status)
+!!     do accepted step
+!!        call rf%write_increment(step, body, status, contact)   ! one group, flushed
+!!     end do
+!!     call rf%set_status(text)                       ! completed / failed at ...
+!!     call rf%close()
 !!
 !! The file is flushed after every increment, so a run that stops early
 !! leaves every finished increment readable.  Every HDF5 return code is
@@ -28,20 +45,22 @@ module results_hdf5
    use errors, only: status_t, STAT_IO
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
+   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t
    use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, law_name, &
                             matching_name, rigid_shape_name, MAX_PAIR_NODES
+   use version, only: K2D_VERSION
    use xdmf_writer, only: write_xdmf, xdmf_path, CELL_NNODE, XDMF_CELL_CODE
    implicit none
    private
-   public :: results_file_t, K2D_VERSION
+   public :: results_file_t
 
-   character(len=*), parameter :: K2D_VERSION = '0.1.0'
 
    type :: results_file_t
+      private
       integer(hid_t) :: fid = -1
       character(len=:), allocatable :: path
       integer :: ncompleted = 0
-      logical :: is_open = .false.
+      logical :: opened = .false.
       ! what the XDMF sidecar needs (see xdmf_writer)
       integer :: npoin = 0
       integer :: ncells(4) = 0                 !! elements of each kind: T3, Q4, Q8, Q9
@@ -52,32 +71,38 @@ module results_hdf5
       integer :: inc_open = 0
    contains
       procedure :: create => results_create
-      procedure :: open_increment => results_open_increment
-      procedure :: close_increment => results_close_increment
+      procedure :: write_run_info => results_run_info
+      procedure :: write_contact_definition => results_contact_definition
+      procedure :: write_increment => results_write_increment
       procedure :: set_status => results_set_status
       procedure :: close => results_close
-      procedure :: write_contact_definition => results_contact_definition
-      procedure, nopass :: write_contact_increment => results_contact_increment
-      procedure, nopass :: write_real1, write_real2, write_int1, write_int2
-      procedure, nopass :: attr_int, attr_real0, attr_real1, attr_string
+      procedure :: is_open => results_is_open
+      procedure :: increments_completed => results_increments_completed
    end type results_file_t
 
    logical, save :: library_open = .false.
 
 contains
 
-   !> Create the file (truncating an old one) and write the mesh.
-   subroutine results_create(this, path, m, ngp_elem, xygp, status)
+   !> Create the file (truncating an old one) and write the mesh, with the
+   !! Gauss-point layout of the body fields record (gp_start, xygp).
+   subroutine results_create(this, path, m, body, status)
       class(results_file_t), intent(inout) :: this
       character(len=*), intent(in) :: path
       type(model_t), intent(in) :: m
-      integer, intent(in) :: ngp_elem(:)       !! (nelem) Gauss points of each element
-      real(dp), intent(in) :: xygp(:, :)       !! (2, ngp) their coordinates
+      type(body_fields_t), intent(in) :: body
       type(status_t), intent(inout) :: status
       integer(hid_t) :: gid
       integer :: err, ie, k, n
       integer, allocatable :: conn(:, :), gel(:)
 
+      ! a file object may be used again for another file
+      call this%close()
+      if (allocated(this%incs)) deallocate (this%incs)
+      if (allocated(this%lambda)) deallocate (this%lambda)
+      this%ncompleted = 0
+      this%nmixed = 0
+      this%ncells = 0
       this%path = path
       if (.not. library_open) then
          call h5open_f(err)
@@ -88,7 +113,7 @@ contains
       end if
       call h5fcreate_f(path, H5F_ACC_TRUNC_F, this%fid, err)
       if (fail(err, 'create the result file')) return
-      this%is_open = .true.
+      this%opened = .true.
       call attr_string(this%fid, 'program', 'Kontakt2D', err)
       call attr_string(this%fid, 'version', K2D_VERSION, err)
       call attr_string(this%fid, 'title', m%title, err)
@@ -108,11 +133,11 @@ contains
       call write_int2(gid, 'connectivity', conn, err)
       call write_int1(gid, 'element_nodes', m%nnode_e, err)
       call write_int1(gid, 'material', m%matno, err)
-      call write_real2(gid, 'gauss_coordinates', xygp, err)
-      allocate (gel(size(xygp, 2)))
+      call write_real2(gid, 'gauss_coordinates', body%xygp, err)
+      allocate (gel(size(body%xygp, 2)))
       n = 0
       do ie = 1, m%nelem
-         do k = 1, ngp_elem(ie)
+         do k = 1, body%gp_start(ie + 1) - body%gp_start(ie)
             n = n + 1
             gel(n) = ie
          end do
@@ -138,36 +163,67 @@ contains
       end function fail
    end subroutine results_create
 
-   !> Create the group of increment inc with its attributes; return its id.
-   subroutine results_open_increment(this, inc, lambda, iterations, repeats, converged, gid, status)
+   !> Group /increments/NNNNN of an accepted step: the step record's figures
+   !! as attributes, the body fields and, for a contact model, the contact
+   !! fields; then the step is recorded as completed and the file flushed.
+   subroutine results_write_increment(this, step, body, status, contact)
       class(results_file_t), intent(inout) :: this
-      integer, intent(in) :: inc
-      real(dp), intent(in) :: lambda(:)     !! total load factor of each case
-      integer, intent(in) :: iterations, repeats
-      logical, intent(in) :: converged
+      type(step_record_t), intent(in) :: step
+      type(body_fields_t), intent(in) :: body
+      type(status_t), intent(inout) :: status
+      type(contact_fields_t), intent(in), optional :: contact   !! written when step%contact
+      integer(hid_t) :: gid
+      integer :: err
+
+      call open_increment(this, step, gid, status)
+      if (.not. status%ok()) return
+      err = 0
+      call write_real2(gid, 'displacement', body%disp, err)
+      call write_real2(gid, 'stress_nodal', body%sig_nd, err)
+      call write_real2(gid, 'stress_gauss', body%sig_gp, err)
+      call write_real2(gid, 'reaction', body%react, err)
+      if (step%contact) call attr_real0(gid, 'residual', step%residual, err)
+      if (step%contact) call attr_real0(gid, 'law_drift', step%drift, err)
+      if (step%ideal) call attr_real0(gid, 'penetration', step%penetration, err)
+      if (step%ideal) call attr_int(gid, 'augmentations', step%augmentations, err)
+      call attr_real0(gid, 'imbalance', step%imbalance, err)
+      call attr_int(gid, 'invariant_violations', step%violations, err)
+      call attr_int(gid, 'deck_increment', step%deck_increment, err)
+      call attr_real0(gid, 'deck_increment_fraction', step%fraction, err)
+      call attr_int(gid, 'cuts', step%cuts, err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(step%step))
+      if (step%contact .and. present(contact) .and. status%ok()) call write_contact_fields(gid, contact, status)
+      if (.not. status%ok()) return
+      call close_increment(this, gid, status)
+   end subroutine results_write_increment
+
+   !> Create the group of a step with its first attributes; return its id.
+   subroutine open_increment(this, step, gid, status)
+      class(results_file_t), intent(inout) :: this
+      type(step_record_t), intent(in) :: step
       integer(hid_t), intent(out) :: gid
       type(status_t), intent(inout) :: status
       integer :: err
       character(len=16) :: name
 
-      write (name, '(i5.5)') inc
-      this%inc_open = inc
-      this%lambda_open = lambda
+      write (name, '(i5.5)') step%step
+      this%inc_open = step%step
+      this%lambda_open = step%lambda
       call h5gcreate_f(this%fid, 'increments/'//trim(name), gid, err)
       if (err < 0) then
          call status%set(STAT_IO, 'HDF5: cannot create group /increments/'//trim(name)//' in '//this%path)
          return
       end if
-      call attr_int(gid, 'increment', inc, err)
-      call attr_real1(gid, 'load_factor', lambda, err)
-      call attr_int(gid, 'iterations', iterations, err)
-      call attr_int(gid, 'repeats', repeats, err)
-      call attr_int(gid, 'converged', merge(1, 0, converged), err)
-      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write attributes of increment '//itoa(inc))
-   end subroutine results_open_increment
+      call attr_int(gid, 'increment', step%step, err)
+      call attr_real1(gid, 'load_factor', step%lambda, err)
+      call attr_int(gid, 'iterations', step%solutions, err)
+      call attr_int(gid, 'repeats', step%repeats, err)
+      call attr_int(gid, 'converged', merge(1, 0, step%converged), err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write attributes of increment '//itoa(step%step))
+   end subroutine open_increment
 
    !> Close an increment group, record it as completed and flush the file.
-   subroutine results_close_increment(this, gid, status)
+   subroutine close_increment(this, gid, status)
       class(results_file_t), intent(inout) :: this
       integer(hid_t), intent(in) :: gid
       type(status_t), intent(inout) :: status
@@ -198,7 +254,7 @@ contains
          end block
          call update_xdmf(this, status)
       end if
-   end subroutine results_close_increment
+   end subroutine close_increment
 
    !> Mesh datasets for the XDMF sidecar: /mesh/node_tags (gmsh tags, or the
    !! deck's node numbers), 0-based connectivity per element kind
@@ -265,7 +321,7 @@ contains
       class(results_file_t), intent(inout) :: this
       character(len=*), intent(in) :: text
       integer :: err
-      if (.not. this%is_open) return
+      if (.not. this%opened) return
       call h5adelete_f(this%fid, 'status', err)
       call attr_string(this%fid, 'status', text, err)
       call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, err)
@@ -274,15 +330,47 @@ contains
    subroutine results_close(this)
       class(results_file_t), intent(inout) :: this
       integer :: err
-      if (.not. this%is_open) return
+      if (.not. this%opened) return
       call h5fclose_f(this%fid, err)
-      this%is_open = .false.
+      this%opened = .false.
    end subroutine results_close
 
-   !> /contact: the pairs and the interface laws (written once).
-   subroutine results_contact_definition(this, c, status)
+   !> Is the file open (created and not yet closed)?
+   pure logical function results_is_open(this) result(yes)
+      class(results_file_t), intent(in) :: this
+      yes = this%opened
+   end function results_is_open
+
+   !> Increments recorded as completed so far.
+   pure integer function results_increments_completed(this) result(n)
+      class(results_file_t), intent(in) :: this
+      n = this%ncompleted
+   end function results_increments_completed
+
+   !> Root attributes of the run: the bounds of the automatic increments
+   !! (with the increments' `cuts` their history), whether the bodies were
+   !! condensed onto the contact equations and, for a contact model, the cap
+   !! on solutions per increment the run used.
+   subroutine results_run_info(this, info, status)
+      class(results_file_t), intent(inout) :: this
+      type(run_info_t), intent(in) :: info
+      type(status_t), intent(inout) :: status
+      integer :: err
+      err = 0
+      call attr_int(this%fid, 'autoinc', merge(1, 0, info%autoinc), err)
+      call attr_real0(this%fid, 'autoinc_min_fraction', info%autoinc_min, err)
+      call attr_int(this%fid, 'autoinc_easy_solutions', info%autoinc_easy, err)
+      call attr_int(this%fid, 'condensed', merge(1, 0, info%condensed), err)
+      if (info%npair > 0) call attr_int(this%fid, 'max_repeats', info%max_repeats, err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the run attributes')
+   end subroutine results_run_info
+
+   !> /contact: the pairs and the interface laws (written once); the cap on
+   !! solutions per increment as the run uses it (run information).
+   subroutine results_contact_definition(this, c, info, status)
       class(results_file_t), intent(inout) :: this
       type(contact_def_t), intent(in) :: c
+      type(run_info_t), intent(in) :: info
       type(status_t), intent(inout) :: status
       integer(hid_t) :: gid, iid
       integer :: err, np, i, e
@@ -326,7 +414,7 @@ contains
       call write_int2(gid, 'master_nodes', nm, err)
       call write_real2(gid, 'master_weights', wm, err)
       call attr_string(gid, 'update', update_name(c%opts%update), err)
-      call attr_int(gid, 'max_repeats', c%opts%max_repeats, err)
+      call attr_int(gid, 'max_repeats', info%max_repeats, err)
       call attr_real1(gid, 'augmented', [c%opts%aug_factor, c%opts%aug_tol], err)
       do i = 1, size(c%ifaces)
          write (name, '(a,i0)') 'interface_', i
@@ -362,11 +450,11 @@ contains
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write /contact in '//this%path)
    end subroutine results_contact_definition
 
-   !> Group `contact` of an increment: per-pair quantities (see docs/results-format.md).
-   subroutine results_contact_increment(gid, pn, pt, fn, ft, un, ut, utp, utg, ve, mu, nstate, tstate, kn, kt, status)
+   !> Group `contact` of an increment: the contact fields record (see
+   !! docs/results-format.md).
+   subroutine write_contact_fields(gid, cf, status)
       integer(hid_t), intent(in) :: gid
-      real(dp), intent(in) :: pn(:), pt(:), fn(:), ft(:), un(:), ut(:), utp(:), utg(:), ve(:), mu(:), kn(:), kt(:)
-      integer, intent(in) :: nstate(:), tstate(:)
+      type(contact_fields_t), intent(in) :: cf
       type(status_t), intent(inout) :: status
       integer(hid_t) :: cid
       integer :: err, e
@@ -376,23 +464,23 @@ contains
          call status%set(STAT_IO, 'HDF5: cannot create a contact group')
          return
       end if
-      call write_real1(cid, 'pressure', pn, err)
-      call write_real1(cid, 'shear', pt, err)
-      call write_real1(cid, 'force_normal', fn, err)
-      call write_real1(cid, 'force_tangential', ft, err)
-      call write_real1(cid, 'closure', un, err)
-      call write_real1(cid, 'slip', ut, err)
-      call write_real1(cid, 'slip_irreversible', utp, err)
-      call write_real1(cid, 'slip_gross', utg, err)
-      call write_real1(cid, 'effective_slip', ve, err)
-      call write_real1(cid, 'friction', mu, err)
-      call write_int1(cid, 'normal_state', nstate, err)
-      call write_int1(cid, 'tangential_state', tstate, err)
-      call write_real1(cid, 'stiffness_normal', kn, err)
-      call write_real1(cid, 'stiffness_tangential', kt, err)
+      call write_real1(cid, 'pressure', cf%pressure, err)
+      call write_real1(cid, 'shear', cf%shear, err)
+      call write_real1(cid, 'force_normal', cf%force_normal, err)
+      call write_real1(cid, 'force_tangential', cf%force_tangential, err)
+      call write_real1(cid, 'closure', cf%closure, err)
+      call write_real1(cid, 'slip', cf%slip, err)
+      call write_real1(cid, 'slip_irreversible', cf%slip_irreversible, err)
+      call write_real1(cid, 'slip_gross', cf%slip_gross, err)
+      call write_real1(cid, 'effective_slip', cf%effective_slip, err)
+      call write_real1(cid, 'friction', cf%friction, err)
+      call write_int1(cid, 'normal_state', cf%normal_state, err)
+      call write_int1(cid, 'tangential_state', cf%tangential_state, err)
+      call write_real1(cid, 'stiffness_normal', cf%stiffness_normal, err)
+      call write_real1(cid, 'stiffness_tangential', cf%stiffness_tangential, err)
       call h5gclose_f(cid, e)
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the contact results')
-   end subroutine results_contact_increment
+   end subroutine write_contact_fields
 
    ! ------------------------------------------------------------------ helpers
    ! Each helper leaves err < 0 if any HDF5 call failed (errors accumulate).

@@ -1,14 +1,19 @@
 !> Node and equation adjacency graphs (CSR), built from the element
 !! connectivity plus extra node-node links (contact pairs, ties, rigid-body
 !! reference nodes).  The solvers take the equation graph to size their
-!! storage once; the renumbering takes the node graph.
+!! storage once; the renumbering takes the node graph.  The profile of an
+!! equation graph (column tops, skyline length) is here too: the skyline
+!! solver sizes its storage with it, and the equation numbering reports it
+!! before and after renumbering without building a solver.
 module graph
+   use kinds, only: dp, i8
+   use errors, only: status_t, STAT_SOLVER
    use model, only: model_t
    use dof_map, only: dof_map_t
    use sorting, only: insertion_sort
    implicit none
    private
-   public :: build_node_graph, build_equation_graph
+   public :: build_node_graph, build_equation_graph, column_tops, graph_profile
 
 contains
 
@@ -173,4 +178,98 @@ contains
          ptr(i + 1) = ptr(i) + counts(i)
       end do
    end subroutine counts_to_ptr
+   !> Column tops of the profile from a CSR equation graph.
+   !!
+   !! For every coupling (r, c) listed in the graph, column max(r, c) must
+   !! reach row min(r, c); the graph may list each coupling once or twice
+   !! (one triangle or both).  O(neq + nnz) work.
+   !! Ref: Bathe (1996), the COLSOL storage scheme (column heights, array MAXA).
+   pure subroutine column_tops(neq, xadj, adjncy, top, ierr, msg)
+      integer, intent(in) :: neq          !! number of equations
+      integer, intent(in) :: xadj(:)      !! (neq+1) 1-based CSR row pointers
+      integer, intent(in) :: adjncy(:)    !! coupled equations of each row
+      integer, intent(out) :: top(:)      !! (neq) first coupled row of each column
+      integer, intent(out) :: ierr        !! 0 on success
+      character(len=:), allocatable, intent(out) :: msg  !! reason when ierr /= 0
+      integer :: r, c, p, i, j
+      character(len=80) :: buf
+
+      ierr = 0
+      msg = ''
+      if (neq < 0) then
+         ierr = 1
+         write (buf, '(a,i0)') 'invalid equation graph: negative number of equations ', neq
+         msg = trim(buf)
+         return
+      end if
+      do j = 1, neq
+         top(j) = j
+      end do
+      if (neq == 0) return
+      if (size(xadj) < neq + 1) then
+         ierr = 1
+         write (buf, '(a,i0,a,i0)') 'invalid equation graph: xadj has ', size(xadj), &
+            ' entries, needs ', neq + 1
+         msg = trim(buf)
+         return
+      end if
+      if (xadj(1) /= 1 .or. xadj(neq + 1) - 1 > size(adjncy)) then
+         ierr = 1
+         msg = 'invalid equation graph: xadj must start at 1 and end within adjncy'
+         return
+      end if
+      do r = 1, neq
+         if (xadj(r + 1) < xadj(r)) then
+            ierr = 1
+            write (buf, '(a,i0)') 'invalid equation graph: xadj decreases at row ', r
+            msg = trim(buf)
+            return
+         end if
+         do p = xadj(r), xadj(r + 1) - 1
+            c = adjncy(p)
+            if (c < 1 .or. c > neq) then
+               ierr = 1
+               write (buf, '(a,i0,a,i0)') 'invalid equation graph: row ', r, &
+                  ' lists equation ', c
+               msg = trim(buf)
+               return
+            end if
+            i = min(r, c)
+            j = max(r, c)
+            if (i < top(j)) top(j) = i
+         end do
+      end do
+   end subroutine column_tops
+
+   !> Profile of an equation graph without building a solver.
+   !!
+   !! Meant for comparing numberings (before and after renumbering): the
+   !! profile length is what the skyline solver would store.
+   subroutine graph_profile(neq, xadj, adjncy, nprof, mean_height, max_height, status)
+      integer, intent(in) :: neq              !! number of equations
+      integer, intent(in) :: xadj(:)          !! (neq+1) 1-based CSR row pointers
+      integer, intent(in) :: adjncy(:)        !! coupled equations of each row
+      integer(i8), intent(out) :: nprof       !! profile length: sum_j (h_j + 1)
+      real(dp), intent(out) :: mean_height    !! mean column height h_j = j - top_j
+      integer, intent(out) :: max_height      !! largest column height (half-bandwidth)
+      type(status_t), intent(inout) :: status !! STAT_SOLVER for an invalid graph
+      integer, allocatable :: top(:)
+      integer :: ierr, j
+      character(len=:), allocatable :: msg
+
+      nprof = 0
+      mean_height = 0.0_dp
+      max_height = 0
+      allocate (top(max(neq, 0)))
+      call column_tops(neq, xadj, adjncy, top, ierr, msg)
+      if (ierr /= 0) then
+         call status%set(STAT_SOLVER, msg)
+         return
+      end if
+      do j = 1, neq
+         nprof = nprof + int(j - top(j) + 1, i8)
+         max_height = max(max_height, j - top(j))
+      end do
+      if (neq > 0) mean_height = real(nprof - neq, dp)/real(neq, dp)
+   end subroutine graph_profile
 end module graph

@@ -17,6 +17,7 @@ module model
    public :: model_t, material_t, restraint_t, point_load_t, edge_load_t, body_load_t, &
              node_set_t, edge_set_t, find_node_set, find_edge_set
    public :: NTYPE_PLANE_STRESS, NTYPE_PLANE_STRAIN, NTYPE_AXISYMMETRIC, ntype_name
+   public :: complete_model, model_complete
    public :: MAX_NODE
 
    integer, parameter :: NTYPE_PLANE_STRESS = 1
@@ -175,4 +176,26 @@ contains
          s = 'unknown'
       end select
    end function ntype_name
+
+   !> Give a model built in code the empty parts a deck would have: no ties,
+   !! no contact (interfaces, pairs, rigid bodies), condensation AUTO.
+   pure subroutine complete_model(m)
+      type(model_t), intent(inout) :: m
+      if (.not. allocated(m%ties)) allocate (m%ties(3, 0))
+      if (.not. allocated(m%contact%pairs)) allocate (m%contact%pairs(0))
+      if (.not. allocated(m%contact%ifaces)) allocate (m%contact%ifaces(0))
+      if (.not. allocated(m%contact%rigids)) allocate (m%contact%rigids(0))
+      if (.not. allocated(m%condense)) m%condense = 'AUTO'
+      m%contact%active = size(m%contact%pairs) > 0
+   end subroutine complete_model
+
+   !> Has the model the parts an analysis reads: the contact pairs and
+   !! interfaces (empty without contact), and with contact the rigid bodies
+   !! and the condensation choice?  (Ties may be absent: no ties.)
+   pure logical function model_complete(m) result(yes)
+      type(model_t), intent(in) :: m
+      yes = allocated(m%contact%pairs) .and. allocated(m%contact%ifaces)
+      if (.not. yes) return
+      if (size(m%contact%pairs) > 0) yes = allocated(m%contact%rigids) .and. allocated(m%condense)
+   end function model_complete
 end module model

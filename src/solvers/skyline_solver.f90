@@ -26,11 +26,12 @@ module skyline_solver
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp, i8
    use errors, only: status_t, fatal_internal, STAT_SINGULAR, STAT_SOLVER
+   use graph, only: column_tops
    use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
    implicit none
    private
 
-   public :: skyline_solver_t, graph_profile
+   public :: skyline_solver_t
 
    !> Life-cycle states (private): what the values in `a` currently are.
 
@@ -64,101 +65,6 @@ module skyline_solver
    end type skyline_solver_t
 
 contains
-
-   !> Column tops of the profile from a CSR equation graph.
-   !!
-   !! For every coupling (r, c) listed in the graph, column max(r, c) must
-   !! reach row min(r, c); the graph may list each coupling once or twice
-   !! (one triangle or both).  O(neq + nnz) work.
-   !! Ref: Bathe (1996), the COLSOL storage scheme (column heights, array MAXA).
-   pure subroutine column_tops(neq, xadj, adjncy, top, ierr, msg)
-      integer, intent(in) :: neq          !! number of equations
-      integer, intent(in) :: xadj(:)      !! (neq+1) 1-based CSR row pointers
-      integer, intent(in) :: adjncy(:)    !! coupled equations of each row
-      integer, intent(out) :: top(:)      !! (neq) first coupled row of each column
-      integer, intent(out) :: ierr        !! 0 on success
-      character(len=:), allocatable, intent(out) :: msg  !! reason when ierr /= 0
-      integer :: r, c, p, i, j
-      character(len=80) :: buf
-
-      ierr = 0
-      msg = ''
-      if (neq < 0) then
-         ierr = 1
-         write (buf, '(a,i0)') 'invalid equation graph: negative number of equations ', neq
-         msg = trim(buf)
-         return
-      end if
-      do j = 1, neq
-         top(j) = j
-      end do
-      if (neq == 0) return
-      if (size(xadj) < neq + 1) then
-         ierr = 1
-         write (buf, '(a,i0,a,i0)') 'invalid equation graph: xadj has ', size(xadj), &
-            ' entries, needs ', neq + 1
-         msg = trim(buf)
-         return
-      end if
-      if (xadj(1) /= 1 .or. xadj(neq + 1) - 1 > size(adjncy)) then
-         ierr = 1
-         msg = 'invalid equation graph: xadj must start at 1 and end within adjncy'
-         return
-      end if
-      do r = 1, neq
-         if (xadj(r + 1) < xadj(r)) then
-            ierr = 1
-            write (buf, '(a,i0)') 'invalid equation graph: xadj decreases at row ', r
-            msg = trim(buf)
-            return
-         end if
-         do p = xadj(r), xadj(r + 1) - 1
-            c = adjncy(p)
-            if (c < 1 .or. c > neq) then
-               ierr = 1
-               write (buf, '(a,i0,a,i0)') 'invalid equation graph: row ', r, &
-                  ' lists equation ', c
-               msg = trim(buf)
-               return
-            end if
-            i = min(r, c)
-            j = max(r, c)
-            if (i < top(j)) top(j) = i
-         end do
-      end do
-   end subroutine column_tops
-
-   !> Profile of an equation graph without building a solver.
-   !!
-   !! Meant for comparing numberings (before and after renumbering): the
-   !! profile length is what the skyline solver would store.
-   subroutine graph_profile(neq, xadj, adjncy, nprof, mean_height, max_height, status)
-      integer, intent(in) :: neq              !! number of equations
-      integer, intent(in) :: xadj(:)          !! (neq+1) 1-based CSR row pointers
-      integer, intent(in) :: adjncy(:)        !! coupled equations of each row
-      integer(i8), intent(out) :: nprof       !! profile length: sum_j (h_j + 1)
-      real(dp), intent(out) :: mean_height    !! mean column height h_j = j - top_j
-      integer, intent(out) :: max_height      !! largest column height (half-bandwidth)
-      type(status_t), intent(inout) :: status !! STAT_SOLVER for an invalid graph
-      integer, allocatable :: top(:)
-      integer :: ierr, j
-      character(len=:), allocatable :: msg
-
-      nprof = 0
-      mean_height = 0.0_dp
-      max_height = 0
-      allocate (top(max(neq, 0)))
-      call column_tops(neq, xadj, adjncy, top, ierr, msg)
-      if (ierr /= 0) then
-         call status%set(STAT_SOLVER, msg)
-         return
-      end if
-      do j = 1, neq
-         nprof = nprof + int(j - top(j) + 1, i8)
-         max_height = max(max_height, j - top(j))
-      end do
-      if (neq > 0) mean_height = real(nprof - neq, dp)/real(neq, dp)
-   end subroutine graph_profile
 
    !> Symbolic set-up: column heights and diagonal pointers from the graph.
    !!

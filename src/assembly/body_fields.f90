@@ -1,0 +1,144 @@
+!> The bodies' fields after a step, element by element: stresses at every
+!! Gauss point and averaged at the nodes, the support reactions, and the
+!! equilibrium check of every body.
+!!
+!! Fills the body fields record (model layer) that the result file and the
+!! listing read.  The Gauss-point layout (gp_start, xygp) is fixed: the first
+!! call lays it out.  Ref: Hinton & Owen (1977), STRESS (stresses at the Gauss
+!! points), nodal averaging of the element extrapolations.
+module body_fields
+   use kinds, only: dp
+   use errors, only: status_t, STAT_JACOBIAN
+   use strings, only: itoa
+   use model, only: model_t, MAX_NODE
+   use contact_types, only: PAIR_RIGID
+   use restraint_check, only: find_bodies
+   use dof_map, only: dof_map_t
+   use records, only: body_fields_t
+   use quadrature, only: max_gp
+   use solid2d, only: element_stresses
+   use assembly, only: coupling_t, restrained_forces, element_error
+   implicit none
+   private
+   public :: recover_stresses, update_reactions, number_bodies, body_imbalance
+
+contains
+
+   !> Stresses at every Gauss point and averaged at the nodes for the
+   !! displacements body%disp.  The first call lays out the Gauss points
+   !! (gp_start, xygp) and allocates the stress arrays.
+   subroutine recover_stresses(m, body, status)
+      type(model_t), intent(in) :: m
+      type(body_fields_t), intent(inout) :: body
+      type(status_t), intent(inout) :: status
+      real(dp) :: elcod(2, MAX_NODE), eldis(2*MAX_NODE), xyg(2, max_gp), sg(4, max_gp), sn(4, MAX_NODE)
+      real(dp), allocatable :: cnt(:)
+      integer :: ie, nn, ngp, ierr, k, imat
+
+      if (.not. allocated(body%gp_start)) call lay_out_gauss_points(m, body)
+      allocate (cnt(m%npoin))
+      cnt = 0.0_dp
+      body%sig_nd = 0.0_dp
+      do ie = 1, m%nelem
+         nn = m%nnode_e(ie)
+         imat = m%matno(ie)
+         elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
+         do k = 1, nn
+            eldis(2*k - 1:2*k) = body%disp(:, m%lnods(k, ie))
+         end do
+         call element_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
+                               m%ngaus, eldis(1:2*nn), ngp, xyg, sg, sn(:, 1:nn), ierr)
+         if (ierr /= 0) then
+            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (stress recovery): '//element_error(ierr))
+            return
+         end if
+         body%xygp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1) = xyg(:, 1:ngp)
+         body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1) = sg(:, 1:ngp)
+         do k = 1, nn
+            body%sig_nd(:, m%lnods(k, ie)) = body%sig_nd(:, m%lnods(k, ie)) + sn(:, k)
+            cnt(m%lnods(k, ie)) = cnt(m%lnods(k, ie)) + 1.0_dp
+         end do
+      end do
+      do k = 1, m%npoin
+         if (cnt(k) > 0.0_dp) body%sig_nd(:, k) = body%sig_nd(:, k)/cnt(k)
+      end do
+   end subroutine recover_stresses
+
+   !> Count the Gauss points of every element; allocate the Gauss-point and
+   !! nodal stress arrays.
+   subroutine lay_out_gauss_points(m, body)
+      type(model_t), intent(in) :: m
+      type(body_fields_t), intent(inout) :: body
+      real(dp) :: elcod(2, MAX_NODE), xyg(2, max_gp), sg(4, max_gp), sn(4, MAX_NODE)
+      integer :: ie, nn, ngp, ierr, k, imat, ntot
+      allocate (body%gp_start(m%nelem + 1))
+      body%gp_start(1) = 1
+      do ie = 1, m%nelem
+         nn = m%nnode_e(ie)
+         elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
+         imat = m%matno(ie)
+         call element_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
+                               m%ngaus, [(0.0_dp, k=1, 2*nn)], ngp, xyg, sg, sn(:, 1:nn), ierr)
+         body%gp_start(ie + 1) = body%gp_start(ie) + ngp
+      end do
+      ntot = body%gp_start(m%nelem + 1) - 1
+      if (allocated(body%xygp)) deallocate (body%xygp)
+      if (allocated(body%sig_gp)) deallocate (body%sig_gp)
+      if (allocated(body%sig_nd)) deallocate (body%sig_nd)
+      allocate (body%xygp(2, ntot), body%sig_gp(4, ntot), body%sig_nd(4, m%npoin))
+   end subroutine lay_out_gauss_points
+
+   !> Support reactions K u - f_ext at the restrained dofs, zero elsewhere:
+   !! the bodies' restrained forces plus the springs' nodal forces fsp (what
+   !! the springs take from the bodies) minus the external forces.
+   subroutine update_reactions(coup, map, fext, fsp, body)
+      type(coupling_t), intent(in) :: coup
+      type(dof_map_t), intent(in) :: map
+      real(dp), intent(in) :: fext(:, :)       !! (2, npoin) external forces of the step
+      real(dp), intent(in) :: fsp(:, :)        !! (2, npoin) spring forces at the nodes
+      type(body_fields_t), intent(inout) :: body
+      real(dp), allocatable :: fr(:, :)
+      allocate (fr(2, size(fext, 2)))
+      call restrained_forces(coup, map, body%disp, fr)
+      body%react = 0.0_dp
+      where (body%restrained) body%react = fr + fsp - fext
+   end subroutine update_reactions
+
+   !> The body of every node (0: none), for the equilibrium check.  A rigid
+   !! body's reference node belongs to no element: a body of its own.
+   subroutine number_bodies(m, body, nbody)
+      type(model_t), intent(in) :: m
+      integer, allocatable, intent(out) :: body(:)   !! (npoin)
+      integer, intent(out) :: nbody
+      integer :: j
+      allocate (body(m%npoin))
+      call find_bodies(m, reshape([integer ::], [2, 0]), body, nbody)
+      do j = 1, size(m%contact%pairs)
+         if (m%contact%pairs(j)%kind /= PAIR_RIGID) cycle
+         if (body(m%contact%pairs(j)%node_b) > 0) cycle
+         nbody = nbody + 1
+         body(m%contact%pairs(j)%node_b) = nbody
+      end do
+   end subroutine number_bodies
+
+   !> Largest |sum of the forces on a body| relative to the force scale of the run.
+   !! In axisymmetry only the axial resultant must vanish: the radial ring forces
+   !! of a body in equilibrium do not add up to zero (its hoop stresses carry them).
+   pure real(dp) function body_imbalance(body, nbody, f, scale, axisymmetric) result(worst)
+      integer, intent(in) :: body(:), nbody
+      real(dp), intent(in) :: f(:, :)        !! (2, npoin) external + reactions - spring internal forces
+      real(dp), intent(in) :: scale          !! largest nodal force seen so far
+      logical, intent(in) :: axisymmetric    !! check the axial (z) resultant only
+      real(dp) :: total(2, max(nbody, 1))
+      integer :: ip
+      total = 0.0_dp
+      do ip = 1, size(body)
+         if (body(ip) > 0) total(:, body(ip)) = total(:, body(ip)) + f(:, ip)
+      end do
+      if (axisymmetric) then
+         worst = maxval(abs(total(2, :)))/scale
+      else
+         worst = maxval(abs(total))/scale
+      end if
+   end function body_imbalance
+end module body_fields

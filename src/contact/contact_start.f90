@@ -1,0 +1,109 @@
+!> The start of a contact analysis: initial states of the pairs and the start
+!! pressure p_m of eq. (4.1), from which the first increment's secant
+!! stiffnesses come (eqs. 4.5, 4.6).
+module contact_start
+   use kinds, only: dp
+   use errors, only: status_t, STAT_INPUT
+   use model, only: model_t
+   use contact_types, only: LAW_ROUGH
+   use contact_algorithm, only: contact_state_t, contact_init
+   use restraint_check, only: find_bodies
+   implicit none
+   private
+   public :: init_contact_states, start_pressure
+
+contains
+
+   !> Initial states of the pairs: closed when their gap is within the gap
+   !! tolerance (CONTACT ... GAPTOL, or 1e-9 of the model's size).
+   subroutine init_contact_states(m, st)
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(out) :: st
+      real(dp) :: gap_tol
+      gap_tol = m%contact%opts%gap_tol
+      if (gap_tol < 0.0_dp) gap_tol = 1.0e-9_dp*model_size(m)
+      call contact_init(m%contact, gap_tol, st)
+   end subroutine init_contact_states
+
+   !> Largest extent of the mesh in x or y.
+   pure real(dp) function model_size(m)
+      type(model_t), intent(in) :: m
+      model_size = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), maxval(m%coord(2, :)) - minval(m%coord(2, :)))
+   end function model_size
+
+   !> Start pressure p_m of eq. (4.1) for the rough interfaces: the resultant
+   !! of the first load increment on body A, projected on the mean contact
+   !! normal, over the nominal area of the initially closed pairs; or START PM.
+   !! When body A carries no load (e.g. a foundation under a loaded punch, or a
+   !! half-space under a rigid body driven through its reference node) the
+   !! resultant on the bodies of side B is taken instead: both balance the
+   !! same contact force.
+   subroutine start_pressure(m, fcase, dlam1, st, status)
+      type(model_t), intent(in) :: m
+      real(dp), intent(in) :: fcase(:, :, :)   !! (2, npoin, ncase) forces of the load cases at factor 1
+      real(dp), intent(in) :: dlam1(:)         !! (ncase) load factors of the first increment
+      type(contact_state_t), intent(inout) :: st
+      type(status_t), intent(inout) :: status
+      integer, allocatable :: body(:), nolinks(:, :)
+      logical, allocatable :: in_a(:), in_b(:)
+      real(dp) :: nbar(2), aa, fn
+      integer :: nbody, j, k
+      logical :: any_closed
+
+      st%p_start = m%contact%opts%p_start
+      if (st%p_start > 0.0_dp) return
+      allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
+      call find_bodies(m, nolinks, body, nbody)
+      in_a = .false.
+      in_b = .false.
+      nbar = 0.0_dp
+      aa = 0.0_dp
+      any_closed = .false.
+      do j = 1, size(m%contact%pairs)
+         associate (pr => m%contact%pairs(j))
+            if (m%contact%ifaces(pr%iface)%law /= LAW_ROUGH) cycle
+            if (body(pr%node_a) > 0) in_a = in_a .or. body == body(pr%node_a)
+            do k = 2, pr%nn
+               if (body(pr%nodes(k)) > 0) then
+                  in_b = in_b .or. body == body(pr%nodes(k))
+               else
+                  in_b(pr%nodes(k)) = .true.      ! a rigid body's reference node
+               end if
+            end do
+            if (.not. st%s(j)%closed) cycle
+            any_closed = .true.
+            aa = aa + pr%area
+            nbar = nbar + pr%area*pr%n
+         end associate
+      end do
+      if (.not. any_closed) then
+         st%p_start = 0.0_dp
+         return
+      end if
+      nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
+      fn = abs(dot_product(resultant(in_a), nbar))
+      if (.not. (fn > 0.0_dp)) fn = abs(dot_product(resultant(in_b .and. .not. in_a), nbar))
+      if (.not. (fn > 0.0_dp) .or. .not. (aa > 0.0_dp)) then
+         call status%set(STAT_INPUT, 'contact: the first increment applies no force normal to the contact '// &
+                         'surface on either body (it is displacement-driven), so the start pressure p_m of eq. (4.1) '// &
+                         'cannot be computed; give it on a CONTACT START card (PM)')
+         return
+      end if
+      st%p_start = fn/aa
+   contains
+      !> Resultant of the first load increment on the flagged nodes.
+      function resultant(flag) result(f)
+         logical, intent(in) :: flag(:)
+         real(dp) :: f(2), df(2)
+         integer :: ip, ic
+         f = 0.0_dp
+         do ip = 1, m%npoin
+            if (.not. flag(ip)) cycle
+            do ic = 1, size(dlam1)
+               df = dlam1(ic)*fcase(:, ip, ic)
+               f = f + df
+            end do
+         end do
+      end function resultant
+   end subroutine start_pressure
+end module contact_start

@@ -1,0 +1,113 @@
+!> The records of a run: what one accepted step, its fields and the run as a
+!! whole leave behind, in the form both outputs (the HDF5 result file and the
+!! listing) and the caller read.
+!!
+!! The layers that own a quantity fill its record once per step: the driver
+!! the step record (convergence figures), the assembly layer the body fields
+!! (stresses next to the element loops, reactions), the contact layer the
+!! contact fields (p = F/A, state codes).  `io/results_hdf5` (the only module
+!! that knows the HDF5 names) and `io/listing` take the records as they are;
+!! neither knows the contact algorithm or a solver.  The records live in the
+!! model layer because `io` may use only `io`, `model` and `core`.
+!!
+!! Life cycle of one run:
+!!
+!!     run_info_t        once, after the set-up (what the run uses: solver,
+!!                       contact system, caps, automatic increments)
+!!     body_fields_t     Gauss-point layout once, then every accepted step
+!!     contact_fields_t  every accepted step (contact models)
+!!     step_record_t     every accepted step
+module records
+   use kinds, only: dp, i8
+   implicit none
+   private
+
+   public :: step_record_t, body_fields_t, contact_fields_t, run_info_t
+   public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
+   public :: STEP_CONVERGED, STEP_UNSETTLED
+
+   !> Normal state codes of a pair (results `normal_state`).
+   integer, parameter :: NS_OPEN = 0         !! open: no force
+   integer, parameter :: NS_LOADING = 1      !! closed on the virgin curve (the ideal law: closed)
+   integer, parameter :: NS_UNLOADING = 2    !! closed on the unloading/reloading branch
+   !> Tangential state codes of a pair (results `tangential_state`).
+   integer, parameter :: TS_STICK = 0        !! elastic (stick)
+   integer, parameter :: TS_PLASTIC = 1      !! on the hardening branch
+   integer, parameter :: TS_SLIP = 2         !! slip
+
+   !> How an accepted step ended.
+   integer, parameter :: STEP_CONVERGED = 0  !! met its convergence criterion
+   integer, parameter :: STEP_UNSETTLED = 1  !! an EXPLICIT increment accepted with its slip forces
+                                             !! unsettled (its out-of-balance force is carried on)
+
+   !> Figures of one accepted step (one group of the result file).
+   type :: step_record_t
+      integer :: step = 0                    !! number of the accepted step (the result group)
+      integer :: deck_increment = 0          !! the deck increment it belongs to
+      real(dp) :: fraction = 0.0_dp          !! how much of that deck increment is done after it
+      integer :: cuts = 0                    !! halvings before it was accepted (automatic increments)
+      real(dp), allocatable :: lambda(:)     !! (ncase) total load factor of every case
+      integer :: solutions = 0               !! linear solutions (repeats included)
+      integer :: repeats = 0                 !! solutions caused by mode changes
+      real(dp) :: residual = 0.0_dp          !! relative out-of-balance force left (contact)
+      real(dp) :: drift = 0.0_dp             !! largest departure of F_n from its curve, relative (contact)
+      real(dp) :: imbalance = 0.0_dp         !! largest force imbalance of a body, relative
+      integer :: violations = 0              !! invariant violations (SPEC §7)
+      real(dp) :: penetration = 0.0_dp       !! ideal contact: largest |u_n| (closed) or stick slip
+      integer :: augmentations = 0           !! ideal contact: multiplier updates
+      logical :: converged = .true.          !! accepted (the attribute `converged` of the group)
+      integer :: status = STEP_CONVERGED     !! STEP_CONVERGED or STEP_UNSETTLED
+      logical :: contact = .false.           !! the model has contact: residual and drift apply
+      logical :: ideal = .false.             !! some interface is ideal: penetration, augmentations apply
+      logical :: last = .false.              !! the last step of the load history
+      logical :: written = .false.           !! goes into the result file (OPTIONS RESULTS)
+   end type step_record_t
+
+   !> Nodal and Gauss-point fields of the bodies after a step.
+   type :: body_fields_t
+      real(dp), allocatable :: disp(:, :)        !! (2, npoin) total displacements
+      real(dp), allocatable :: react(:, :)       !! (2, npoin) reactions, zero at free dofs
+      real(dp), allocatable :: sig_nd(:, :)      !! (4, npoin) stresses averaged at the nodes
+      real(dp), allocatable :: sig_gp(:, :)      !! (4, ngp) Gauss-point stresses
+      real(dp), allocatable :: xygp(:, :)        !! (2, ngp) Gauss-point coordinates
+      integer, allocatable :: gp_start(:)        !! (nelem+1) first Gauss point of each element
+      logical, allocatable :: restrained(:, :)   !! (2, npoin) restrained dofs (reactions listed)
+   end type body_fields_t
+
+   !> Per-pair contact quantities after a step (results group `contact`).
+   type :: contact_fields_t
+      real(dp), allocatable :: pressure(:)              !! F_n / A_j, extrapolated at zero area
+      real(dp), allocatable :: shear(:)                 !! F_T / A_j, extrapolated at zero area
+      real(dp), allocatable :: force_normal(:)          !! F_n
+      real(dp), allocatable :: force_tangential(:)      !! F_T
+      real(dp), allocatable :: closure(:)               !! u_n
+      real(dp), allocatable :: slip(:)                  !! u_T
+      real(dp), allocatable :: slip_irreversible(:)     !! u_T^p
+      real(dp), allocatable :: slip_gross(:)            !! its gross-slip part
+      real(dp), allocatable :: effective_slip(:)        !! v_e
+      real(dp), allocatable :: friction(:)              !! friction coefficient used
+      integer, allocatable :: normal_state(:)           !! NS_*
+      integer, allocatable :: tangential_state(:)       !! TS_*
+      real(dp), allocatable :: stiffness_normal(:)      !! K_n used
+      real(dp), allocatable :: stiffness_tangential(:)  !! K_T used
+   end type contact_fields_t
+
+   !> What a run uses, for the header of the listing and the terminal and the
+   !! root attributes of the result file (the model is not written back).
+   type :: run_info_t
+      character(len=:), allocatable :: solver       !! name of the linear solver of the bodies
+      character(len=:), allocatable :: system       !! the contact system's line ('' for the full system)
+      logical :: returning = .false.                !! contact scheme: RETURN update (Newton) ...
+      logical :: modified = .false.                 !! ... with the stiffness kept (modified Newton)
+      integer :: neq = 0                            !! equations
+      integer :: nres = 0                           !! restrained dofs
+      integer :: npair = 0                          !! contact pairs
+      logical :: condensed = .false.                !! bodies condensed onto the contact equations
+      integer(i8) :: system_bytes = 0               !! memory of the contact system beyond the solver
+      integer :: max_repeats = 0                    !! cap on solutions of one increment, as used
+      logical :: autoinc = .false.                  !! automatic increments
+      real(dp) :: autoinc_min = 0.0_dp              !! their smallest step, fraction of a deck increment
+      integer :: autoinc_easy = 0                   !! solutions of an easy step
+   end type run_info_t
+
+end module records
