@@ -1208,6 +1208,9 @@ contains
    pure function as_dp_from_dp(x) result(v)
       real(dp), intent(in) :: x(..)
       real(dp), allocatable :: v(:)
+      ! allocated before the assignments: gfortran 12's reallocation of an unallocated
+      ! result from an assumed-rank section reads uninitialised bounds (UBSan reports it)
+      allocate (v(size(x)))
       select rank (x)
       rank (0)
          v = [x]
