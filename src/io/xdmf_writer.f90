@@ -16,8 +16,8 @@
 !! at `/contact/position`, a Polyvertex topology given inline) with the
 !! pairs' results of the increment (pressure, shear, closure, slip, ...).
 !! Every grid carries the load factors of its increment as a grid-centred
-!! attribute `load_factor` (one value per load case; ParaView shows it as
-!! field data).  The time of increment i is i (load factors need not
+!! attribute `load_factor` (one tuple, one component per load case; ParaView
+!! shows it as field data).  The time of increment i is i (load factors need not
 !! increase).  The file is rewritten after every increment, so it only ever
 !! names datasets that exist.
 !!
@@ -225,13 +225,15 @@ contains
           '          '//item//nl//'        </Attribute>'
    end function attribute
 
-   !> The load factors of an increment as a grid-centred attribute (one value
-   !! per load case, given inline).
+   !> The load factors of an increment as a grid-centred attribute, given
+   !! inline: one tuple of one component per load case (type Matrix 1 x ncase,
+   !! which the legacy and the Xdmf3 readers read alike; a Scalar of several
+   !! values is several tuples in one and several components in the other).
    function load_factor_attribute(lambda) result(s)
       real(dp), intent(in) :: lambda(:)             !! load factors of the increment
       character(len=:), allocatable :: s
-      s = '        <Attribute Name="load_factor" AttributeType="Scalar" Center="Grid">'//nl// &
-          '          <DataItem Dimensions="'//itoa(size(lambda))//'" NumberType="Float" Precision="8" '// &
+      s = '        <Attribute Name="load_factor" AttributeType="Matrix" Center="Grid">'//nl// &
+          '          <DataItem Dimensions="1 '//itoa(size(lambda))//'" NumberType="Float" Precision="8" '// &
           'Format="XML">'//factors(lambda)//'</DataItem>'//nl//'        </Attribute>'
    end function load_factor_attribute
 

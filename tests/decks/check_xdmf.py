@@ -58,7 +58,7 @@ def check_load_factor(g, step):
         fail(f"grid {g.get('Name')}: no grid-centred attribute load_factor")
     item = att[0].find("DataItem")
     vals = np.array(item.text.split(), dtype=float)
-    if item.get("Format") != "XML" or dims(item) != (len(step.load_factor),) or \
+    if item.get("Format") != "XML" or dims(item) != (1, len(step.load_factor)) or \
             np.max(np.abs(vals - step.load_factor)) > 1e-15 * max(1.0, np.max(np.abs(step.load_factor))):
         fail(f"grid {g.get('Name')}: load_factor {vals}, the file {step.load_factor}")
 

@@ -7,7 +7,8 @@ For each reader -- the legacy "XDMF Reader" and the two Xdmf3 readers ParaView
 picks by default for .xdmf -- the time steps must be the increment numbers of
 the result file; at every time step the bodies' grid must carry the
 displacement (at least the two components of the file), the nodal stresses as
-one 4-component array and the load factor as field data, and for a model with
+one 4-component array and the load factors as field data (one tuple, one
+component per load case), and for a model with
 contact a second grid of one point per pair must carry every pair quantity the
 sidecar names; the range of every array component must equal the range of the
 same column in the HDF5 file (both read the same float64 numbers, so the
@@ -110,9 +111,10 @@ def check_reader(kind, path, res):
             fail(f"{kind}: a contact grid for a model without contact")
         for g in grids:
             lf = g.GetFieldData().GetArray("load_factor")
-            if lf is None or lf.GetNumberOfTuples() != len(step.load_factor):
-                fail(f"{kind}, increment {step.number}: no load_factor field of {len(step.load_factor)} value(s)")
-            got = np.array([lf.GetTuple1(k) for k in range(lf.GetNumberOfTuples())])
+            if lf is None or lf.GetNumberOfTuples() != 1 or lf.GetNumberOfComponents() != len(step.load_factor):
+                fail(f"{kind}, increment {step.number}: no load_factor field of one tuple of "
+                     f"{len(step.load_factor)} component(s)")
+            got = np.array(lf.GetTuple(0))
             if np.max(np.abs(got - step.load_factor)) > RTOL * max(1.0, np.max(np.abs(step.load_factor))):
                 fail(f"{kind}, increment {step.number}: load_factor {got}, the file {step.load_factor}")
         seen.add("load_factor (field)")
