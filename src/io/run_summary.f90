@@ -26,7 +26,7 @@
 !!   their lumped areas A_j (ring areas in axisymmetry).
 !! * residual closure: the permanent set u_A - c_n2 p_A^m2 of the normal law
 !!   after unloading from the reversal point A (SPEC D8), largest over the
-!!   pairs that were unloaded.
+!!   pairs that were unloaded (whose pressure has left its reversal value).
 !!
 !! Ref: J. Altenbach, R. Buczkowski, Inkrementelle Finite-Elemente
 !!      Modellierung des 2D-Kontaktproblems, eqs. (2.1a), (2.1b) (normal law).
@@ -128,7 +128,10 @@ contains
          s%force_t = sum(cf%force_tangential(1:np))
          if (allocated(body%disp)) s%approach = body_approach(m, body%disp)
          do k = 1, min(np, size(ua), size(pa))
+            ! unloaded: a reversal point, and the pressure moved off it since (a pair that holds
+            ! its pressure at A, e.g. under a tangential unloading, has lost no closure yet)
             if (pa(k) <= 0.0_dp) cycle
+            if (abs(cf%pressure(k) - pa(k)) <= 1.0e-9_dp*pa(k)) cycle
             if (m%contact%ifaces(pairs(k)%iface)%law /= LAW_ROUGH) cycle
             ures = ua(k) - m%contact%ifaces(pairs(k)%iface)%cn2*pa(k)**m%contact%ifaces(pairs(k)%iface)%m2
             if (s%unloaded) ures = max(ures, s%residual_closure)

@@ -240,7 +240,7 @@ def stage_table(path, approach_nodes=None):
                     % (i + 1, h.stage_name(a, b), h.steps[a].number, h.steps[b].number, f["load_factor"],
                        f["peak_pressure"], f["peak_at"][0], f["peak_at"][1], f["width"], f["area"],
                        f["approach"], f["normal_force"], f["tangential_force"], f["slipping"], f["closed"],
-                       "%.3g" % residual_after(h, a, b) if h.stage_name(a, b) == "unloading" else "-"))
+                       _fmt_residual(h, a, b)))
     head = ("| stage | kind | increments | load factor | peak pressure [%s] at | width [%s] | area [%s²] | "
             "approach [%s] | sum F_n [%s] | sum F_T | slipping pairs | residual closure [%s] |\n"
             % (u["stress"], u["length"], u["length"], u["length"], u["force"], u["length"])
@@ -248,10 +248,17 @@ def stage_table(path, approach_nodes=None):
     return head + "\n".join(rows) + "\n"
 
 
+def _fmt_residual(h, a, b):
+    if h.stage_name(a, b) != "unloading":
+        return "-"
+    r = residual_after(h, a, b)
+    return "-" if np.isnan(r) else "%.3g" % r
+
+
 def residual_after(h, a, b):
     """The permanent set u_A - c_n2 p_A^m2 left in the pairs by the unloading stage a..b (the
     reversal point A of each pair: its last loading state before the stage), largest over the
-    pairs (SPEC D8)."""
+    pairs that left the virgin curve in the stage (SPEC D8); NaN when none did."""
     if a == 0:
         return float("nan")
     ifaces = h.result.contact.interfaces
@@ -260,9 +267,14 @@ def residual_after(h, a, b):
     ua = h.field(a - 1, "closure")
     pa = h.field(a - 1, "pressure")
     ns = h.field(a - 1, "normal_state")
+    ns_end = h.field(b, "normal_state")
+    p_end = h.field(b, "pressure")
     for j in range(h.npair):
         law = ifaces[int(iface_of[j]) - 1]
-        if ns[j] != 1 or str(law.get("law", "")).upper() != "ROUGH":
+        # pairs unloaded in the stage: off the virgin curve and below their reversal pressure (a
+        # pair that holds its pressure, e.g. under a tangential unloading, stays at A)
+        if ns[j] != 1 or ns_end[j] == 1 or p_end[j] >= pa[j] * (1.0 - 1e-9) or \
+                str(law.get("law", "")).upper() != "ROUGH":
             continue
         cn2, m2 = (float(v) for v in np.atleast_1d(law["normal_model"])[2:4])
         r = ua[j] - cn2 * pa[j] ** m2
