@@ -158,10 +158,11 @@ contains
       s%icase = 1
       if (allocated(m%lambda)) then
          if (m%ncase > 1) s%icase = maxloc(maxval(m%lambda, 2) - minval(m%lambda, 2), 1)
-         lam = m%lambda(s%icase, :)
+         allocate (lam(size(m%lambda, 2)))
+         lam(:) = m%lambda(s%icase, :)
       else
          allocate (lam(n + 1))
-         lam = 0.0_dp
+         lam(:) = 0.0_dp
       end if
       s%by_deck = .not. m%autoinc .and. n <= size(lam) - 1
       if (s%by_deck) then
