@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Kontakt2D: the main job in one command.
-#   tools/run.sh [DECK] [kontakt2d options]
+#   tools/run.sh [DECK] [kontakt2d options] [--pairs LIST] [--increments LIST] [--approach-nodes A,B]
 # Installs missing Debian packages, builds (Release) if needed, solves DECK
 # (default: inputs/punch_5_1.dat, the paper's example 5.1 with Coulomb friction
 # 0.2 -- Table 1, column 2, and Table 2 -- on the cheapest model within 1 % of a
@@ -13,6 +13,17 @@ source "$(dirname "$0")/setup.sh"
 
 deck=${1:-$K2D_ROOT/inputs/punch_5_1.dat}
 [ $# -gt 0 ] && shift
+k2d_args=()
+plot_args=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --pairs|--increments|--approach-nodes)
+      if [ $# -lt 2 ]; then k2d_log "$1 needs a value"; exit 2; fi
+      plot_args+=("$1" "$2"); shift 2 ;;
+    --pairs=*|--increments=*|--approach-nodes=*) plot_args+=("$1"); shift ;;
+    *) k2d_args+=("$1"); shift ;;
+  esac
+done
 if [ ! -f "$deck" ]; then k2d_log "no such deck: $deck"; exit 2; fi
 
 k2d_ensure_packages
@@ -22,6 +33,8 @@ k2d_mesh_deck "$deck"
 name=$(basename "${deck%.*}")
 out="$K2D_ROOT/results/$name"
 mkdir -p "$out"
-"$K2D_ROOT/build/kontakt2d" "$deck" -o "$out/$name.h5" "$@"
+"$K2D_ROOT/build/kontakt2d" "$deck" -o "$out/$name.h5" "${k2d_args[@]}"
 "$K2D_PYTHON" "$K2D_ROOT/tools/plot_results.py" "$out/$name.h5" -o "$out/$name.png"
+rm -f "$out/${name}"_{approach,pairs,interface,slip}.png "$out/${name}_stages.md"
+"$K2D_PYTHON" "$K2D_ROOT/tools/plot_history.py" "$out/$name.h5" --stages-file "$out/${name}_stages.md" "${plot_args[@]}"
 echo "results: $out/$name.h5 (HDF5), $out/$name.xdmf (for ParaView), $out/$name.lis (listing), $out/$name.png (plot)"

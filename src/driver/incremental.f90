@@ -47,6 +47,7 @@ module incremental
    use contact_start, only: init_contact_states, start_pressure
    use contact_fields, only: build_contact_fields, pair_spacing
    use results_hdf5, only: results_file_t
+   use run_summary, only: list_run_summary
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, list_progress, &
                       list_completed, list_failed, list_drift_note, list_sliding_warning, list_chatter_warning
    implicit none
@@ -687,6 +688,8 @@ contains
          res%reported = .true.
          call list_failed(stderr, res%completed, status%message, res%results_path, m%results_every)
       end if
+      call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, res%contact%s%ua, &
+                            res%contact%s%pa, out%have_lis, out%lu, out%quiet, out%t0, out%rate)
       call out%rf%close()
       if (out%have_lis) close (out%lu)
    end subroutine close_outputs

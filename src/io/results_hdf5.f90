@@ -65,6 +65,7 @@ module results_hdf5
       integer :: npoin = 0
       integer :: ncells(4) = 0                 !! elements of each kind: T3, Q4, Q8, Q9
       integer :: nmixed = 0                    !! length of /mesh/cells_mixed (mixed meshes)
+      integer :: npair = 0                     !! contact pairs (the sidecar's contact grid)
       integer, allocatable :: incs(:)          !! finished increments
       real(dp), allocatable :: lambda(:, :)    !! (ncase, ncompleted) their load factors
       real(dp), allocatable :: lambda_open(:)  !! load factors of the increment being written
@@ -311,7 +312,7 @@ contains
       type(status_t), intent(inout) :: status
       integer :: ierr
       call write_xdmf(xdmf_path(this%path), this%path, this%npoin, this%ncells, this%nmixed, this%incs, &
-                      this%lambda, ierr)
+                      this%lambda, ierr, this%npair)
       if (ierr /= 0) call status%set(STAT_IO, 'cannot write the XDMF file '//xdmf_path(this%path)// &
                                      ' (error '//itoa(ierr)//')')
    end subroutine update_xdmf
@@ -379,6 +380,7 @@ contains
       character(len=16) :: name
       err = 0
       np = size(c%pairs)
+      this%npair = np
       call h5gcreate_f(this%fid, 'contact', gid, e)
       if (e < 0) then
          call status%set(STAT_IO, 'HDF5: cannot create group /contact in '//this%path)

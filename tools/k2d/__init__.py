@@ -9,6 +9,9 @@ lines on it (docs/DEVELOPERS.md, "The Python package tools/k2d").
     tables, analysis CSV and Markdown tables; contact pairs along the surface, contact radius
     checks           the expected values of a good deck (<deck>.check)
     paper, study, increment_study, plot   the work of the scripts of the same purpose
+    history          the figures of a run's history (approach, load stages, width, slip zone)
+    history_plot     the history plots and the stage table (tools/plot_history.py, tools/run.sh)
+    compare          a deck against a varied card, or two decks: runs and report (tools/compare.py)
 
 Scripts in tools/ put the tools directory on sys.path and import from here,
 e.g. ``from k2d.results import Result``; ctest sets PYTHONPATH for the test checkers.

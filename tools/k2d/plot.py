@@ -14,6 +14,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.tri as mtri  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .history import unit_labels  # noqa: E402
 from .results import Result  # noqa: E402
 
 COMPONENTS = {"xx": 0, "yy": 1, "xy": 2, "zz": 3}
@@ -52,6 +53,14 @@ def outline(conn, nnode):
             ring = [e[0], e[4], e[1], e[5], e[2], e[6], e[3], e[7]]
         lines.append(ring + [ring[0]])
     return lines
+
+
+def load_factor_text(lam):
+    """The load factors of an increment for a title: one number per load case."""
+    lam = np.atleast_1d(lam)
+    if lam.size == 1:
+        return "load factor %.4g" % lam[0]
+    return "load factors " + ", ".join("%.4g (case %d)" % (v, k + 1) for k, v in enumerate(lam))
 
 
 def plot_result(path, output=None, increment=0, component="mises", scale=None, zoom="auto"):
@@ -108,8 +117,9 @@ def plot_result(path, output=None, increment=0, component="mises", scale=None, z
         span = size
     scale = scale if scale is not None else (0.05 * span / umax if umax > 0 else 1.0)
     values = von_mises(s) if component == "mises" else s[:, COMPONENTS[component]]
+    units = unit_labels(res)
     label = {"mises": "von Mises stress", "xx": "stress xx (rr)", "yy": "stress yy (zz)",
-             "xy": "shear stress xy", "zz": "stress zz (hoop)"}[component]
+             "xy": "shear stress xy", "zz": "stress zz (hoop)"}[component] + " [%s]" % units["stress"]
 
     npanel = 2 if contact is not None else 1
     fig, axes = plt.subplots(1, npanel, figsize=(7 * npanel, 6), squeeze=False)
@@ -135,10 +145,19 @@ def plot_result(path, output=None, increment=0, component="mises", scale=None, z
     if window is not None:
         ax.set_xlim(window[0], window[1])
         ax.set_ylim(window[2], window[3])
-    ax.set_xlabel("r" if ntype == 3 else "x")
-    ax.set_ylabel("z" if ntype == 3 else "y")
-    ax.set_title(f"{title}\nincrement {step.number}, load factor {np.round(lam, 4)}, displacements x {scale:.3g}",
-                 fontsize=9)
+    ax.set_xlabel(("r" if ntype == 3 else "x") + " [%s]" % units["length"])
+    ax.set_ylabel(("z" if ntype == 3 else "y") + " [%s]" % units["length"])
+    note = ""
+    if contact is not None:
+        closed = contact["normal_state"] > 0
+        cmax = float(contact["closure"][closed].max()) if closed.any() else 0.0
+        if cmax > 0:
+            # the layer has zero thickness: its closure is drawn magnified like every displacement
+            note = ("\nnote: the contact layer's closure (up to %.3g %s) is magnified too:"
+                    " body A appears sunk up to %.3g %s into body B" % (cmax, units["length"], scale * cmax,
+                                                                         units["length"]))
+    ax.set_title(f"{title}\nincrement {step.number}, {load_factor_text(lam)}, displacements x {scale:.3g}{note}",
+                 fontsize=8)
 
     if contact is not None:
         ax2 = axes[0, 1]
@@ -164,8 +183,8 @@ def plot_result(path, output=None, increment=0, component="mises", scale=None, z
             last = xc[closed].max() if closed.any() else xc.max()
             ax2.set_xlim(xc.min() - 0.02 * (last - xc.min()), last + 0.25 * (last - xc.min()))
         name = ("r" if ntype == 3 else "x") if axis == 0 else ("z" if ntype == 3 else "y")
-        ax2.set_xlabel(name + " of the pairs (node b)")
-        ax2.set_ylabel("contact stress")
+        ax2.set_xlabel(name + " of the pairs (node b) [%s]" % units["length"])
+        ax2.set_ylabel("contact stress [%s]" % units["stress"])
         ax2.axhline(0.0, color="0.7", lw=0.8)
         ax2.grid(True, alpha=0.3)
         ax2.legend(fontsize=8)

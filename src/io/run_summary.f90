@@ -1,0 +1,375 @@
+!> The summary that ends the listing and the terminal output of a run: what an
+!! engineer reads first.
+!!
+!! One table of the load stages (the monotone pieces of the load history:
+!! loading, unloading, holding, read from the deck's load factors) with their
+!! increments, load factors, solutions and worst law drift; then the state of
+!! the interface at the end of the run: peak pressure and where, contact width
+!! and area, approach of the bodies, total normal and tangential force,
+!! slipping pairs, the residual closure left by unloading, the worst law drift
+!! of the run, the solutions and the time.
+!!
+!! It is fed from the records of the run (the body and contact fields of the
+!! last step, the solutions and drifts of every step, the pairs' reversal
+!! points) and the model; it computes in a pure routine (`summarise_run`) and
+!! prints in another (`write_run_summary`).  `list_run_summary` is the one call
+!! of the driver.
+!!
+!! Definitions (docs/results-format.md, "Run summary"):
+!!
+!! * approach: the relative displacement of the two bodies along the mean pair
+!!   normal n (from body B into body A), between the points of each body
+!!   farthest from the interface along n: delta = mean(u_B.n) - mean(u_A.n),
+!!   positive when the bodies approach; a rigid body is its reference node.
+!! * contact width: extent of the closed pairs along the interface coordinate
+!!   (the coordinate along which the pairs spread most); area: the sum of
+!!   their lumped areas A_j (ring areas in axisymmetry).
+!! * residual closure: the permanent set u_A - c_n2 p_A^m2 of the normal law
+!!   after unloading from the reversal point A (SPEC D8), largest over the
+!!   pairs that were unloaded (whose pressure has left its reversal value).
+!!
+!! Ref: J. Altenbach, R. Buczkowski, Inkrementelle Finite-Elemente
+!!      Modellierung des 2D-Kontaktproblems, eqs. (2.1a), (2.1b) (normal law).
+module run_summary
+   use kinds, only: dp, i8, stdout
+   use model, only: model_t
+   use records, only: body_fields_t, contact_fields_t, NS_OPEN, TS_SLIP
+   use contact_types, only: LAW_ROUGH, PAIR_RIGID, UNITS_MODEL
+   implicit none
+   private
+   public :: run_summary_t, summarise_run, write_run_summary, list_run_summary, load_stages
+
+   !> The figures of the summary.
+   type :: run_summary_t
+      integer :: nstep = 0                          !! accepted steps
+      integer :: icase = 1                          !! the load case whose factor the stages follow
+      logical :: by_deck = .true.                   !! stages mapped onto steps (no automatic increments)
+      integer, allocatable :: first(:), last(:)     !! steps of each stage
+      integer, allocatable :: direction(:)          !! +1 loading, -1 unloading, 0 holding
+      real(dp), allocatable :: lam_from(:), lam_to(:)  !! load factor at the start and end of each stage
+      integer, allocatable :: solutions(:)          !! solutions of each stage
+      real(dp), allocatable :: drift(:)             !! worst law drift of each stage
+      integer :: solutions_total = 0
+      real(dp) :: worst_drift = 0.0_dp              !! worst law drift of the run
+      integer :: worst_drift_step = 0
+      ! the interface at the end of the run
+      logical :: contact = .false.
+      integer :: npair = 0, nclosed = 0, nslip = 0
+      integer :: peak_pair = 0                      !! pair of the peak pressure (0: none closed)
+      real(dp) :: peak_pressure = 0.0_dp
+      real(dp) :: peak_xy(2) = 0.0_dp
+      real(dp) :: width = 0.0_dp, area = 0.0_dp
+      real(dp) :: approach = 0.0_dp
+      real(dp) :: force_n = 0.0_dp, force_t = 0.0_dp
+      logical :: unloaded = .false.                 !! some pair was unloaded (residual closure applies)
+      real(dp) :: residual_closure = 0.0_dp
+      character(len=:), allocatable :: length_unit, stress_unit, force_unit
+   end type run_summary_t
+
+contains
+
+   !> The summary to the listing (when there is one) and the terminal (unless quiet).
+   subroutine list_run_summary(m, body, cf, solutions, drift, ua, pa, have_lis, lu, quiet, t0, rate)
+      type(model_t), intent(in) :: m                    !! the model
+      type(body_fields_t), intent(in) :: body           !! body fields of the last step
+      type(contact_fields_t), intent(in) :: cf          !! contact fields of the last step (unallocated without contact)
+      integer, intent(in) :: solutions(:)               !! solutions of every accepted step
+      real(dp), intent(in) :: drift(:)                  !! law drift of every accepted step
+      real(dp), intent(in) :: ua(:), pa(:)              !! (npair) reversal points A of the pairs (0: never unloaded)
+      logical, intent(in) :: have_lis                   !! a listing is written
+      integer, intent(in) :: lu                         !! its unit
+      logical, intent(in) :: quiet                      !! no terminal output
+      integer(i8), intent(in) :: t0, rate               !! clock at the start of the run, its rate
+      type(run_summary_t) :: s
+      integer(i8) :: t1
+      real(dp) :: seconds
+      call system_clock(t1)
+      seconds = real(t1 - t0, dp)/real(max(rate, 1_i8), dp)
+      call summarise_run(m, body, cf, solutions, drift, ua, pa, s)
+      if (have_lis) call write_run_summary(lu, s, seconds)
+      if (.not. quiet) call write_run_summary(stdout, s, seconds)
+   end subroutine list_run_summary
+
+   !> The figures of the summary from the records of the run.
+   pure subroutine summarise_run(m, body, cf, solutions, drift, ua, pa, s)
+      type(model_t), intent(in) :: m                    !! the model
+      type(body_fields_t), intent(in) :: body           !! body fields of the last step (disp)
+      type(contact_fields_t), intent(in) :: cf          !! contact fields of the last step
+      integer, intent(in) :: solutions(:)               !! solutions of every accepted step
+      real(dp), intent(in) :: drift(:)                  !! law drift of every accepted step
+      real(dp), intent(in) :: ua(:), pa(:)              !! reversal points of the pairs
+      type(run_summary_t), intent(out) :: s
+      integer :: k, np
+      real(dp) :: ures
+      s%nstep = size(solutions)
+      s%solutions_total = sum(solutions)
+      if (size(drift) > 0) then
+         s%worst_drift_step = maxloc(drift, 1)
+         s%worst_drift = drift(s%worst_drift_step)
+      end if
+      call stage_table(m, solutions, drift, s)
+      call unit_names(m, s)
+      np = 0
+      if (allocated(cf%pressure) .and. allocated(m%contact%pairs)) np = min(size(cf%pressure), size(m%contact%pairs))
+      s%contact = np > 0
+      if (.not. s%contact) return
+      s%npair = np
+      associate (pairs => m%contact%pairs(1:np), closed => cf%normal_state(1:np) /= NS_OPEN)
+         s%nclosed = count(closed)
+         s%nslip = count(closed .and. cf%tangential_state(1:np) == TS_SLIP)
+         if (s%nclosed > 0) then
+            s%peak_pair = maxloc(cf%pressure(1:np), 1, mask=closed)
+            s%peak_pressure = cf%pressure(s%peak_pair)
+            s%peak_xy = pairs(s%peak_pair)%position
+            s%area = sum(pairs%area, mask=closed)
+            s%width = closed_extent(pairs, closed)
+         end if
+         s%force_n = sum(cf%force_normal(1:np))
+         s%force_t = sum(cf%force_tangential(1:np))
+         if (allocated(body%disp)) s%approach = body_approach(m, body%disp)
+         do k = 1, min(np, size(ua), size(pa))
+            ! unloaded: a reversal point, and the pressure moved off it since (a pair that holds
+            ! its pressure at A, e.g. under a tangential unloading, has lost no closure yet)
+            if (pa(k) <= 0.0_dp) cycle
+            if (abs(cf%pressure(k) - pa(k)) <= 1.0e-9_dp*pa(k)) cycle
+            if (m%contact%ifaces(pairs(k)%iface)%law /= LAW_ROUGH) cycle
+            ures = ua(k) - m%contact%ifaces(pairs(k)%iface)%cn2*pa(k)**m%contact%ifaces(pairs(k)%iface)%m2
+            if (s%unloaded) ures = max(ures, s%residual_closure)
+            s%residual_closure = ures
+            s%unloaded = .true.
+         end do
+      end associate
+   end subroutine summarise_run
+
+   !> The stages of the load history of case s%icase (the case whose factor
+   !! varies most) and their solutions and drifts.  Without automatic
+   !! increments step i is deck increment i; with them the steps cannot be
+   !! mapped onto the deck's increments from these records, and one row holds
+   !! the whole run.
+   pure subroutine stage_table(m, solutions, drift, s)
+      type(model_t), intent(in) :: m
+      integer, intent(in) :: solutions(:)
+      real(dp), intent(in) :: drift(:)
+      type(run_summary_t), intent(inout) :: s
+      integer :: nst, k, n
+      integer, allocatable :: first(:), last(:), dir(:)
+      real(dp), allocatable :: lam(:)
+      n = s%nstep
+      s%icase = 1
+      if (allocated(m%lambda)) then
+         if (m%ncase > 1) s%icase = maxloc(maxval(m%lambda, 2) - minval(m%lambda, 2), 1)
+         allocate (lam(size(m%lambda, 2)))
+         lam(:) = m%lambda(s%icase, :)
+      else
+         allocate (lam(n + 1))
+         lam(:) = 0.0_dp
+      end if
+      s%by_deck = .not. m%autoinc .and. n <= size(lam) - 1
+      if (s%by_deck) then
+         call load_stages(lam(1:n + 1), first, last, dir)
+      else
+         first = [1]
+         last = [n]
+         dir = [0]
+      end if
+      nst = size(first)
+      allocate (s%first(nst), s%last(nst), s%direction(nst), s%lam_from(nst), s%lam_to(nst), &
+                s%solutions(nst), s%drift(nst))
+      s%first = first
+      s%last = last
+      s%direction = dir
+      do k = 1, nst
+         s%solutions(k) = sum(solutions(first(k):last(k)))
+         s%drift(k) = 0.0_dp
+         if (last(k) >= first(k) .and. size(drift) >= last(k)) s%drift(k) = maxval(drift(first(k):last(k)))
+         if (s%by_deck) then
+            s%lam_from(k) = lam(first(k))           ! lam(1) is the factor before increment 1
+            s%lam_to(k) = lam(last(k) + 1)
+         else
+            s%lam_from(k) = lam(1)
+            s%lam_to(k) = lam(min(size(lam), m%nincs + 1))
+         end if
+      end do
+   end subroutine stage_table
+
+   !> The monotone stages of a load history: lam(1) is the factor at the start,
+   !! lam(i+1) after step i.  A stage ends where the factor turns (loading to
+   !! unloading or back); steps that hold the factor join the stage before (or
+   !! form the first stage if the history starts with them).
+   pure subroutine load_stages(lam, first, last, dir)
+      real(dp), intent(in) :: lam(:)                !! (nstep+1) load factors
+      integer, allocatable, intent(out) :: first(:), last(:)  !! steps of each stage
+      integer, allocatable, intent(out) :: dir(:)   !! +1 loading, -1 unloading, 0 holding
+      integer :: i, n, d, cur
+      real(dp) :: tol
+      n = size(lam) - 1
+      allocate (first(0), last(0), dir(0))
+      if (n < 1) return
+      tol = 1.0e-12_dp*max(1.0_dp, maxval(abs(lam)))
+      first = [1]
+      cur = 0
+      do i = 1, n
+         d = 0
+         if (lam(i + 1) - lam(i) > tol) d = 1
+         if (lam(i + 1) - lam(i) < -tol) d = -1
+         if (d == 0 .or. d == cur) cycle
+         if (cur /= 0) then
+            last = [last, i - 1]
+            first = [first, i]
+         end if
+         dir = [dir, d]
+         cur = d
+      end do
+      if (size(dir) == 0) dir = [0]
+      last = [last, n]
+   end subroutine load_stages
+
+   !> Extent of the closed pairs along the coordinate of largest spread of all pairs.
+   pure real(dp) function closed_extent(pairs, closed) result(w)
+      use contact_types, only: contact_pair_t
+      type(contact_pair_t), intent(in) :: pairs(:)
+      logical, intent(in) :: closed(:)
+      integer :: ax, j
+      real(dp) :: lo, hi, c
+      ax = 1
+      if (maxval(pairs%position(2)) - minval(pairs%position(2)) > &
+          maxval(pairs%position(1)) - minval(pairs%position(1))) ax = 2
+      lo = huge(1.0_dp)
+      hi = -huge(1.0_dp)
+      do j = 1, size(pairs)
+         if (.not. closed(j)) cycle
+         c = pairs(j)%position(ax)
+         lo = min(lo, c)
+         hi = max(hi, c)
+      end do
+      w = max(hi - lo, 0.0_dp)
+   end function closed_extent
+
+   !> Approach of the bodies (see the module header): bodies are the connected
+   !! parts of the mesh; the far points of A and B along the mean pair normal.
+   pure real(dp) function body_approach(m, disp) result(delta)
+      type(model_t), intent(in) :: m
+      real(dp), intent(in) :: disp(:, :)            !! (2, npoin) displacements
+      integer :: body(m%npoin), j, ie, k, ra, r
+      real(dp) :: n(2), s(m%npoin), tol, ext
+      logical :: in_a(m%npoin), in_b(m%npoin)
+      associate (pairs => m%contact%pairs)
+         ! connected parts of the mesh (union-find over the elements)
+         body = [(j, j=1, m%npoin)]
+         do ie = 1, m%nelem
+            ra = root(body, m%lnods(1, ie))
+            do k = 2, m%nnode_e(ie)
+               r = root(body, m%lnods(k, ie))
+               if (r /= ra) body(r) = ra
+            end do
+         end do
+         do j = 1, m%npoin
+            body(j) = root(body, j)
+         end do
+         n = [sum(pairs%n(1)), sum(pairs%n(2))]
+         n = n/max(norm2(n), tiny(1.0_dp))
+         s = n(1)*m%coord(1, :) + n(2)*m%coord(2, :)
+         tol = 1.0e-6_dp*max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), &
+                             maxval(m%coord(2, :)) - minval(m%coord(2, :)))
+         in_a = .false.
+         in_b = .false.
+         do j = 1, size(pairs)
+            in_a = in_a .or. body == body(pairs(j)%node_a)
+            if (pairs(j)%kind /= PAIR_RIGID) in_b = in_b .or. body == body(pairs(j)%node_b)
+         end do
+         ext = maxval(s, mask=in_a)
+         in_a = in_a .and. s >= ext - tol
+         if (all(pairs%kind == PAIR_RIGID)) then
+            in_b = .false.
+            do j = 1, size(pairs)
+               in_b(pairs(j)%nodes(2)) = .true.      ! the rigid body's reference node
+            end do
+         else
+            ext = minval(s, mask=in_b)
+            in_b = in_b .and. s <= ext + tol
+         end if
+         delta = sum(n(1)*disp(1, :) + n(2)*disp(2, :), mask=in_b)/max(count(in_b), 1) - &
+                 sum(n(1)*disp(1, :) + n(2)*disp(2, :), mask=in_a)/max(count(in_a), 1)
+      end associate
+   contains
+      pure integer function root(parent, i) result(r)
+         integer, intent(in) :: parent(:), i
+         r = i
+         do while (parent(r) /= r)
+            r = parent(r)
+         end do
+      end function root
+   end function body_approach
+
+   !> Unit names from the deck's unit convention: roughness constants in the
+   !! literature's units (UNITS KGF_UM, N_UM) require the model in mm and N/mm2.
+   pure subroutine unit_names(m, s)
+      use model, only: NTYPE_PLANE_STRAIN, NTYPE_AXISYMMETRIC
+      type(model_t), intent(in) :: m
+      type(run_summary_t), intent(inout) :: s
+      logical :: mm
+      mm = .false.
+      if (allocated(m%contact%ifaces)) then
+         if (size(m%contact%ifaces) > 0) mm = m%contact%ifaces(1)%units /= UNITS_MODEL
+      end if
+      if (mm) then
+         s%length_unit = 'mm'
+         s%stress_unit = 'N/mm2'
+         s%force_unit = 'N'
+         if (m%ntype == NTYPE_PLANE_STRAIN) s%force_unit = 'N per mm of thickness'
+         if (m%ntype == NTYPE_AXISYMMETRIC) s%force_unit = 'N (whole ring)'
+      else
+         s%length_unit = '(length)'
+         s%stress_unit = '(stress)'
+         s%force_unit = '(force)'
+      end if
+   end subroutine unit_names
+
+   !> Print the summary on unit u.
+   subroutine write_run_summary(u, s, seconds)
+      integer, intent(in) :: u                      !! output unit
+      type(run_summary_t), intent(in) :: s          !! the figures
+      real(dp), intent(in) :: seconds               !! wall time of the run
+      character(len=9), parameter :: dname(-1:1) = ['unloading', 'holding  ', 'loading  ']
+      character(len=16) :: b
+      integer :: k
+      write (u, '(/a)') ' '//repeat('=', 78)
+      write (u, '(a,i0,a)') ' SUMMARY OF THE RUN (load stages follow the factor of load case ', s%icase, ')'
+      write (u, '(a)') '  stage   increments      load factor from -> to  kind       solutions  worst drift'
+      do k = 1, size(s%first)
+         if (s%by_deck) then
+            write (u, '(i7,i7,a,i6,2x,es12.4,a,es12.4,2x,a,i11,es13.3)') k, s%first(k), ' -', s%last(k), &
+               s%lam_from(k), ' ->', s%lam_to(k), dname(s%direction(k)), s%solutions(k), s%drift(k)
+         else
+            write (u, '(i7,i7,a,i6,2x,a,i11,es13.3)') k, s%first(k), ' -', s%last(k), &
+               'automatic increments: stages not separated', s%solutions(k), s%drift(k)
+         end if
+      end do
+      if (s%contact) then
+         write (u, '(a,i0,a)') ' The interface at the end (increment ', s%nstep, '):'
+         if (s%peak_pair > 0) then
+            write (u, '(a,es12.4,1x,a,a,i0,a,es12.4,a,es12.4,a)') '  peak pressure       ', s%peak_pressure, &
+               s%stress_unit, ' at pair ', s%peak_pair, ' (', s%peak_xy(1), ',', s%peak_xy(2), ')'
+         else
+            write (u, '(a)') '  peak pressure        none: no pair is closed'
+         end if
+         write (u, '(a,es12.4,1x,a,a,i0,a,i0,a,es12.4,1x,a)') '  contact width       ', s%width, s%length_unit, &
+            ' (', s%nclosed, ' of ', s%npair, ' pairs closed), area', s%area, s%length_unit//'2'
+         write (u, '(a,es12.4,1x,a)') '  approach            ', s%approach, s%length_unit
+         write (u, '(a,es12.4,a,es12.4,1x,a)') '  total force normal  ', s%force_n, ', tangential', s%force_t, &
+            s%force_unit
+         write (u, '(a,i0,a,i0,a)') '  slipping pairs       ', s%nslip, ' of ', s%nclosed, ' closed'
+         if (s%unloaded) then
+            write (u, '(a,es12.4,1x,a,a)') '  residual closure    ', s%residual_closure, s%length_unit, &
+               ' (permanent set after unloading: largest u_A - c_n2 p_A^m2)'
+         else
+            write (u, '(a)') '  residual closure     none: no pair was unloaded'
+         end if
+         write (u, '(a,es12.4,a,i0,a)') '  worst law drift     ', s%worst_drift, ' (increment ', s%worst_drift_step, ')'
+      end if
+      write (b, '(f12.2)') seconds
+      write (u, '(a,i0,a,i0,a)') ' ', s%solutions_total, ' solutions in ', s%nstep, ' increments, '// &
+         trim(adjustl(b))//' s'
+      write (u, '(a)') ' '//repeat('=', 78)
+   end subroutine write_run_summary
+end module run_summary

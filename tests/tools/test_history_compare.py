@@ -1,0 +1,217 @@
+#!/usr/bin/python3
+"""Tests of the history figures, the history plots, the run summary and tools/compare.py.
+
+Run by ctest (tests/tools/CMakeLists.txt) with PYTHONPATH=<source>/tools and K2D_EXECUTABLE;
+by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_history_compare.py [-v]
+
+* approach: the V4 cycle is displacement controlled (the top face of A moved by -0.0131933
+  lambda, the bottom of B fixed), so the approach of the bodies is 0.0131933 lambda exactly, at
+  every increment of loading, unloading and reloading (tolerance 1e-12 relative: a mean of
+  equal prescribed numbers);
+* the load stages of a load-unload-reload history, and the residual closure after unloading,
+  u_A - c_n2 p_A^m2 with (u_A, p_A) on the virgin curve u = c_n p^m (Newton scheme: the pairs
+  lie on the law to its tolerance, so 1e-6 relative);
+* the run summary of the Fortran program (end of the terminal output) against the same figures
+  computed here from the result file -- two implementations of one definition, equal to the
+  printed 5 significant digits (5e-5 relative);
+* the history plots are written for a cycle and skipped for a single increment;
+* vary_deck: LAW on every interface (also when the block starts with INTERFACE), SCHEME
+  replacing UPDATE, a deck without CONTACT refused; the varied deck read by the program has
+  the law it asks for;
+* tools/compare.py: the numbers of its report (six significant digits) agree with the HDF5
+  files read here to 1e-5 relative; a bad --vary gives exit code 2 and a message.
+"""
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+from k2d.build import ROOT, find_or_build
+from k2d.compare import CompareError, vary_deck
+from k2d.history import History
+from k2d.history_plot import plot_history, stage_table
+from k2d.results import Result
+
+CYCLE = os.path.join(ROOT, "tests", "decks", "contact", "v4_cycle_return.dat")
+TANGENTIAL = os.path.join(ROOT, "tests", "decks", "contact", "v2_tangential.dat")
+SPHERE = os.path.join(ROOT, "inputs", "sphere_5_2.dat")
+D_TOP = 0.0131933          # the prescribed displacement of the V4 deck's top face at factor 1
+
+
+class Work(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        base = os.environ.get("K2D_TEST_WORK")
+        if base:
+            os.makedirs(base, exist_ok=True)
+        cls.work = tempfile.mkdtemp(prefix="history_", dir=base)
+        cls.exe = find_or_build(os.environ.get("K2D_EXECUTABLE"))
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.work, ignore_errors=True)
+
+    def run_deck(self, deck, name):
+        h5 = os.path.join(self.work, name + ".h5")
+        p = subprocess.run([self.exe, deck, "-o", h5], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        return h5, p.stdout
+
+
+class TestHistory(Work):
+    def test_approach_is_the_prescribed_displacement(self):
+        h5, _ = self.run_deck(CYCLE, "cycle")
+        h = History(Result(h5))
+        self.assertGreaterEqual(len(h.steps), 60)
+        np.testing.assert_allclose(h.approach, D_TOP * h.lam, rtol=1e-12, atol=1e-12 * D_TOP)
+
+    def test_stages_and_residual_closure(self):
+        h5, out = self.run_deck(CYCLE, "cycle2")
+        res = Result(h5)
+        h = History(res)
+        stages = h.stages()
+        self.assertEqual([h.stage_name(a, b) for a, b in stages], ["loading", "unloading", "loading"])
+        self.assertEqual([(h.steps[a].number, h.steps[b].number) for a, b in stages], [(1, 20), (21, 40), (41, 70)])
+        cn, m, cn2, m2 = res.contact.interfaces[0]["normal_model"][:4]
+        pa = h.field(19, "pressure")                   # the reversal point: the end of the first loading
+        self.assertTrue(np.all(h.field(19, "normal_state") == 1))
+        want = np.max(cn * pa ** m - cn2 * pa ** m2)
+        table = stage_table(h5)
+        row = [ln for ln in table.splitlines() if ln.startswith("| 2 | unloading")]
+        self.assertEqual(len(row), 1, table)
+        got = float(row[0].split("|")[-2])
+        self.assertAlmostEqual(got / want, 1.0, delta=5e-3)   # the table prints 3 digits
+        # the Fortran summary: same definitions, computed from the pairs' reversal states
+        summary = out[out.index("SUMMARY OF THE RUN"):]
+        f_res = float(re.search(r"residual closure\s+(\S+) mm", summary).group(1))
+        self.assertAlmostEqual(f_res / want, 1.0, delta=1e-6 + 5e-5)
+        last = h.figures(len(h.steps) - 1)
+        f_app = float(re.search(r"approach\s+(\S+) mm", summary).group(1))
+        self.assertAlmostEqual(f_app / last["approach"], 1.0, delta=5e-5)
+        f_peak = float(re.search(r"peak pressure\s+(\S+) N/mm2 at pair (\d+)", summary).group(1))
+        self.assertAlmostEqual(f_peak / last["peak_pressure"], 1.0, delta=5e-5)
+        f_fn = float(re.search(r"total force normal\s+(\S+),", summary).group(1))
+        self.assertAlmostEqual(f_fn / last["normal_force"], 1.0, delta=5e-5)
+        rows = re.findall(r"^\s+(\d+)\s+(\d+) -\s+(\d+)\s+\S+ ->\s+\S+\s+(loading|unloading)", summary, flags=re.M)
+        self.assertEqual([(int(a), int(b), c) for _, a, b, c in rows],
+                         [(1, 20, "loading"), (21, 40, "unloading"), (41, 70, "loading")])
+        total = int(re.search(r"(\d+) solutions in 70 increments", summary).group(1))
+        self.assertEqual(total, int(np.sum(res.history("iterations"))))
+
+    def test_plots_written_for_a_cycle_and_not_for_one_increment(self):
+        h5, _ = self.run_deck(CYCLE, "cycle3")
+        pngs = plot_history(h5)
+        self.assertEqual([os.path.basename(p) for p in pngs],
+                         ["cycle3_%s.png" % k for k in ("approach", "pairs", "interface", "slip")])
+        for p in pngs:
+            self.assertGreater(os.path.getsize(p), 10000)
+        with self.assertRaises(ValueError):
+            plot_history(h5, pairs=[99])
+        with self.assertRaises(ValueError):
+            plot_history(h5, increments=[500])
+        h1, _ = self.run_deck(SPHERE, "sphere")
+        self.assertEqual(plot_history(h1), [])
+
+
+class TestVary(Work):
+    DECK = ("TITLE\nt\nCONTACT\n{first}UNITS     KGF_UM\nLAW       ROUGH\nUPDATE    NEWTON\nSURFACE   A\n"
+            "    1    2\n{second}SURFACE   B\n    3    4\nINCREMENTS\n    1       1.0\nEND\n")
+
+    def test_law_on_every_interface(self):
+        text = self.DECK.format(first="", second="INTERFACE\nFRICTION  NONE\n")
+        v = vary_deck(text, "LAW", "IDEAL")
+        lines = v.splitlines()
+        self.assertEqual(sum(ln.startswith("LAW") for ln in lines), 2)
+        self.assertEqual(lines[lines.index("CONTACT") + 1], "LAW       IDEAL")
+        self.assertEqual(lines[lines.index("INTERFACE") + 1], "LAW       IDEAL")
+        self.assertNotIn("LAW       ROUGH", v)
+        # a block that starts with INTERFACE: no card before it (that would open another interface)
+        v = vary_deck(self.DECK.format(first="INTERFACE\n", second=""), "LAW", "IDEAL")
+        lines = v.splitlines()
+        self.assertEqual(lines[lines.index("CONTACT") + 1], "INTERFACE")
+        self.assertEqual(sum(ln.startswith("LAW") for ln in lines), 1)
+
+    def test_scheme_replaces_update(self):
+        v = vary_deck(self.DECK.format(first="", second=""), "SCHEME", "INCREMENTAL")
+        self.assertNotIn("UPDATE", v)
+        self.assertEqual(v.count("SCHEME    INCREMENTAL"), 1)
+        self.assertIn("INCREMENTS\n    1       1.0\nEND\n", v)
+
+    def test_no_contact_block(self):
+        with self.assertRaises(CompareError):
+            vary_deck("TITLE\nt\nINCREMENTS\nEND\n", "LAW", "IDEAL")
+
+    def test_varied_deck_runs_with_that_law(self):
+        with open(TANGENTIAL) as f:
+            text = vary_deck(f.read(), "LAW", "IDEAL")
+        deck = os.path.join(os.path.dirname(TANGENTIAL), ".test_vary_%d.dat" % os.getpid())
+        with open(deck, "w") as f:
+            f.write(text)
+        try:
+            h5, _ = self.run_deck(deck, "ideal")
+        finally:
+            os.remove(deck)
+        ifaces = Result(h5).contact.interfaces
+        self.assertGreater(len(ifaces), 0)
+        self.assertTrue(all(i["law"] == "IDEAL" for i in ifaces))
+
+
+class TestCompare(Work):
+    def test_report_numbers_agree_with_the_files(self):
+        out = os.path.join(self.work, "cmp")
+        p = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "compare.py"), TANGENTIAL,
+                            "--vary", "SCHEME=NEWTON", "-o", out, "--exe", self.exe],
+                           capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        with open(os.path.join(out, "report.md")) as f:
+            md = f.read()
+        table = {}
+        for ln in md.splitlines():
+            cells = [c.strip() for c in ln.strip().strip("|").split("|")]
+            if len(cells) == 4:
+                table[cells[0].split(" [")[0]] = cells[1:]      # the label without its unit
+        checked = 0
+        for col, h5 in ((0, "as_given.h5"), (1, "SCHEME_NEWTON.h5")):
+            res = Result(os.path.join(out, h5))
+            self.assertEqual(res.status, "completed")
+            c = res.last.contact_all()
+            closed = c["normal_state"] > 0
+            self.assertTrue(closed.any())
+            want = {
+                "peak pressure": np.max(c["pressure"][closed]),
+                "total normal force": np.sum(c["force_normal"]),
+                "total tangential force": np.sum(c["force_tangential"]),
+                "closed pairs": np.sum(closed),
+                "slipping pairs": np.sum(closed & (c["tangential_state"] == 2)),
+                "solutions (all increments)": np.sum(res.history("iterations")),   # every increment kept
+                "increments": len(res.steps),
+            }
+            for key, value in want.items():
+                self.assertIn(key, table, md)
+                got = float(table[key][col])
+                self.assertAlmostEqual(got, float(value), delta=1e-5 * max(abs(float(value)), 1e-300), msg=key)
+                checked += 1
+        self.assertEqual(checked, 14)
+        for png in ("compare_last.png", "compare_history.png"):
+            self.assertIn("(%s)" % png, md)
+            self.assertTrue(os.path.exists(os.path.join(out, png)))
+
+    def test_bad_vary(self):
+        p = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "compare.py"), TANGENTIAL,
+                            "--vary", "LAW=SMOOTH", "--exe", self.exe], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 2)
+        self.assertIn("--vary LAW: unknown value 'SMOOTH'; expected IDEAL or ROUGH", p.stderr)
+        p = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "compare.py"), "no_such.dat",
+                            "--vary", "LAW=IDEAL", "--exe", self.exe], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 2)
+        self.assertIn("no_such.dat: no such deck", p.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
