@@ -90,6 +90,7 @@ module contact_algorithm
    type :: pair_mode_t
       logical :: closed = .false.
       logical :: newly_closed = .false.
+      logical :: held = .false.           !! RETURN: held once at the zero-force point instead of opening
       logical :: on_unloading = .false.
       real(dp) :: ua = 0.0_dp, pa = 0.0_dp
       integer :: tstate = TS_STICK
@@ -402,7 +403,7 @@ contains
       logical, intent(in) :: first              !! first increment (secant iteration option)
       integer :: j
       real(dp) :: dun, dut, u, fn, ft, p, pfloor, pold, fpred, utol
-      logical :: returning, may_switch
+      logical :: returning, may_switch, held_now
 
       returning = cdef%opts%update == UPDATE_RETURN
       pfloor = cdef%opts%p_min_ratio*st%p_start
@@ -420,6 +421,7 @@ contains
             end if
             u = s%un + dun
             may_switch = md%nswitch < MAX_SWITCH
+            held_now = .false.
             fn = 0.0_dp
             ft = 0.0_dp
             if (pr%area <= 0.0_dp) then
@@ -467,7 +469,18 @@ contains
                else
                   fn = s%fn + md%kn*dun
                end if
-               if ((fn < 0.0_dp .or. u <= md%uthr - utol) .and. may_switch) then
+               if (returning .and. u <= md%uthr - utol .and. s%closed .and. s%fn > 0.0_dp .and. &
+                   .not. (md%held .or. md%newly_closed) .and. may_switch) then
+                  ! RETURN, a loaded pair overshooting its zero-force point (a Newton step on a
+                  ! concave branch, m2 > 1): once per increment it is held by the secant from
+                  ! its start to that point, K (u - u_thr) <= 0, which the next solution
+                  ! brings back to the point; below it a second time, it opens
+                  md%held = .true.
+                  held_now = .true.
+                  md%kn = s%fn/max(s%un - md%uthr, tiny(1.0_dp))
+                  fn = md%kn*(u - md%uthr)
+                  call flag(changed(j), md%nswitch, st%chatter)
+               else if ((fn < 0.0_dp .or. u <= md%uthr - utol) .and. may_switch) then
                   md%closed = .false.
                   md%newly_closed = .false.
                   md%kn = 0.0_dp
@@ -512,13 +525,13 @@ contains
             end if
 
             ! Newton stiffness for the next solve of a RETURN update
-            if (returning .and. md%closed) md%kn = newton_normal_stiffness(ifc, md, pr%area, s%fn, st%fn(j), &
-                                                                         fpred, fn, u, dun)
+            if (returning .and. md%closed .and. .not. held_now) &
+               md%kn = newton_normal_stiffness(ifc, md, pr%area, s%fn, st%fn(j), fpred, fn, u, dun)
 
             ! 3. tangential (SPEC §4.3 item 3 and 4)
             if (md%closed .and. ifc%friction /= FRICTION_NONE) then
                if (returning) then
-                  call tangential_return(ifc, s, md, dut, fn, may_switch, ft, changed(j), st%chatter)
+                  call tangential_return(ifc, s, md, pr%area, dut, fn, may_switch, ft, changed(j), st%chatter)
                else
                   call tangential_explicit(ifc, s, md, dut, fn, may_switch, ft, changed(j), st%chatter)
                end if
@@ -558,7 +571,8 @@ contains
       else if (ktan > 0.0_dp .and. fn > 1.0e-12_dp*fref) then
          k = max(ktan, 1.0e-3_dp*fn/max(u - md%uthr, tiny(1.0_dp)))
       else if (abs(dun) > 0.0_dp .and. abs(fn0 - fn) > 1.0e-12_dp*fref) then
-         k = abs(fn0 - fn)/abs(dun)
+         ! (below the zero-force point: the secant to that point)
+         k = abs(fn0 - fn)/max(abs(u - dun - max(u, md%uthr)), tiny(1.0_dp))
       else
          ! at rest at zero force: the stiffness of the last solution (the tangent at
          ! the floor pressure from begin_increment)
@@ -569,10 +583,11 @@ contains
    !> RETURN: the tangential law integrated exactly over the increment at the
    !! current normal force (bilinear_return, Masing memory); a new state or a
    !! new direction of the branch or slip is a mode change.
-   pure subroutine tangential_return(ifc, s, md, dut, fn, may_switch, ft, changed, chatter)
+   pure subroutine tangential_return(ifc, s, md, area, dut, fn, may_switch, ft, changed, chatter)
       type(interface_t), intent(in) :: ifc
       type(pair_state_t), intent(in) :: s
       type(pair_mode_t), intent(inout) :: md
+      real(dp), intent(in) :: area            !! lumped area of the pair
       real(dp), intent(in) :: dut, fn
       logical, intent(in) :: may_switch
       real(dp), intent(out) :: ft
@@ -584,6 +599,14 @@ contains
       md%xb = xb
       tsg = 0
       if (itrial /= TS_STICK) tsg = nint(sign(1.0_dp, ft - xb))
+      ! at zero normal force (to round-off of the pair's forces) nothing holds the pair
+      ! tangentially: it slips with F_T = 0 in no particular direction
+      if (fn <= 1.0e-12_dp*max(s%fn, area*md%pa, tiny(1.0_dp))) then
+         ft = 0.0_dp
+         md%xb = 0.0_dp
+         itrial = TS_SLIP
+         tsg = 0
+      end if
       if ((itrial /= md%tstate .or. tsg /= md%tsign) .and. may_switch) then
          md%tstate = itrial
          md%tsign = tsg
