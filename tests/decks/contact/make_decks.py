@@ -101,7 +101,7 @@ def rotation(name):
     d.write(os.path.join(HERE, name + ".dat"))
 
 
-def cycle(name, unload_to, autoinc=False, reload_to=1.5, scheme=None, hold=0):
+def cycle(name, unload_to, autoinc=False, reload_to=1.5, scheme=None, hold=0, m=0.5):
     """Issue 16: a quasi-rigid block (E = 1e6, nu = 0) pressed on the fixed base through the rough
     law by a uniform pressure, loaded to p_max = 1 N/mm2 in 10 increments, unloaded to unload_to
     p_max in 10 and (reload_to > 0) reloaded to reload_to p_max in 10.  No SCHEME card: the default
@@ -117,8 +117,10 @@ def cycle(name, unload_to, autoinc=False, reload_to=1.5, scheme=None, hold=0):
     if autoinc:
         d.options = ["AUTOINC   ON"]
     d.edge_pressure("A", lambda x, y: abs(y - 10.0) < 1e-12, 1.0)
-    d.contact = ["UNITS     KGF_UM", "NORMAL           1.0       0.5       0.5       0.5",
+    d.contact = ["UNITS     KGF_UM", "NORMAL           1.0%10.1f       0.5%10.1f" % (m, m),
                  "FRICTION  NONE"] + (["SCHEME    " + scheme] if scheme else []) + surfaces(d)
+    if m != 0.5:
+        d.comments[2] = "c_n = 1, m = %g, c_n2 = 0.5, m2 = %g (um, kgf/cm2).  No SCHEME card (the default)." % (m, m)
     if scheme:
         d.comments[2] = "c_n = 1, m = 0.5, c_n2 = 0.5, m2 = 0.5 (um, kgf/cm2).  SCHEME %s." % scheme
     d.increments = [(1, [0.1]), (9, [1.0]), (10, [unload_to])] + ([(hold, [unload_to])] if hold else []) + \
@@ -176,6 +178,8 @@ if __name__ == "__main__":
     cycle("cycle_incremental", 0.01, scheme="INCREMENTAL")
     cycle("unload_zero_incremental", 0.0, reload_to=0.0, scheme="INCREMENTAL")
     cycle("unload_zero_reload", 0.0, reload_to=1.5, hold=2)
+    # a stiffening law (m = m2 = 1.2): the unloading branch is concave, its tangent infinite at u_res
+    cycle("unload_zero_m12", 0.0, reload_to=0.0, m=1.2)
     cycle("unload_zero", 0.0, reload_to=0.0)
     cycle("unload_zero_autoinc", 0.0, autoinc=True, reload_to=0.0)
     tangential_cycle("tangential_cycle")
