@@ -79,7 +79,8 @@ module contact_algorithm
       real(dp) :: utp = 0.0_dp            !! irreversible tangential displacement (SPEC §2.3 a)
       real(dp) :: utp_gross = 0.0_dp      !! gross-slip part only (SPEC §2.3 b)
       real(dp) :: ve = 0.0_dp             !! effective slip, path length of the chosen definition
-      real(dp) :: fy = 0.0_dp             !! largest |F_T| reached on the hardening branch or in slip
+      real(dp) :: xb = 0.0_dp             !! back force: centre of the elastic band |F_T - xb| <= 0.625 mu F_n
+      real(dp) :: fy = 0.0_dp             !! EXPLICIT: largest |F_T| reached on the hardening branch or in slip
       integer :: tstate = TS_STICK
       real(dp) :: mu = 0.0_dp             !! friction coefficient used in the increment
       real(dp) :: kn = 0.0_dp, kt = 0.0_dp  !! spring stiffnesses of the increment
@@ -89,9 +90,12 @@ module contact_algorithm
    type :: pair_mode_t
       logical :: closed = .false.
       logical :: newly_closed = .false.
+      logical :: held = .false.           !! RETURN: held once at the zero-force point instead of opening
       logical :: on_unloading = .false.
       real(dp) :: ua = 0.0_dp, pa = 0.0_dp
       integer :: tstate = TS_STICK
+      integer :: tsign = 0                !! direction (+-1) of the branch or slip of tstate (0: stick)
+      real(dp) :: xb = 0.0_dp             !! back force of the tangential law after the increment
       real(dp) :: kn = 0.0_dp             !! normal spring stiffness for the solve
       real(dp) :: kte = 0.0_dp            !! elastic tangential spring stiffness of the increment
       real(dp) :: kt = 0.0_dp             !! tangential spring stiffness for the solve
@@ -244,12 +248,19 @@ contains
       logical, intent(in) :: first
       integer :: j
       real(dp) :: p, pfloor
+      logical :: returning
       pfloor = cdef%opts%p_min_ratio*st%p_start
+      returning = cdef%opts%update == UPDATE_RETURN
       st%augmentations = 0
       st%violation = 0.0_dp
       do j = 1, size(st%s)
          associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             md = pair_mode_t()
+            ! the forces and increments of the last evaluation are those of the start
+            st%fn(j) = s%fn
+            st%ft(j) = s%ft
+            st%dun(j) = 0.0_dp
+            st%dut(j) = 0.0_dp
             if (ifc%law == LAW_IDEAL) then
                md%closed = s%closed
                md%mu = friction_coefficient(ifc, s%ve)
@@ -286,14 +297,21 @@ contains
                end if
             end if
             md%kte = pr%area*tangential_stiffness(p, ifc%s, ifc%r_t(local_index(cdef, j)))
-            ! the tangential state follows the committed forces and the new mu
+            md%xb = s%xb
             md%tstate = TS_STICK
-            if (s%tstate == TS_SLIP .and. abs(s%ft) >= md%mu*s%fn*(1.0_dp - 1.0e-9_dp)) then
-               md%tstate = TS_SLIP
-            else if (ifc%hardening .and. s%tstate /= TS_STICK .and. &
-                     abs(s%ft) >= max(0.625_dp*md%mu*s%fn, s%fy)*(1.0_dp - 1.0e-9_dp)) then
-               md%tstate = TS_PLASTIC
+            md%tsign = 0
+            if (.not. returning) then
+               ! EXPLICIT: the tangential state follows the committed forces and the new mu
+               if (s%tstate == TS_SLIP .and. abs(s%ft) >= md%mu*s%fn*(1.0_dp - 1.0e-9_dp)) then
+                  md%tstate = TS_SLIP
+               else if (ifc%hardening .and. s%tstate /= TS_STICK .and. &
+                        abs(s%ft) >= max(0.625_dp*md%mu*s%fn, s%fy)*(1.0_dp - 1.0e-9_dp)) then
+                  md%tstate = TS_PLASTIC
+               end if
             end if
+            ! RETURN: every increment starts from the elastic (stick) stiffness and the
+            ! return mapping finds the state; starting a reversal with the branch slope
+            ! (or K_T = 0 in slip) would move a force-driven pair 1/kappa times too far
             call set_kt(ifc, md)
          end associate
       end do
@@ -384,9 +402,8 @@ contains
       logical, intent(out) :: changed(:)
       logical, intent(in) :: first              !! first increment (secant iteration option)
       integer :: j
-      real(dp) :: dun, dut, u, fn, ft, p, pfloor, trial, limit, pold
-      integer :: itrial
-      logical :: returning, may_switch
+      real(dp) :: dun, dut, u, fn, ft, p, pfloor, pold, fpred, utol
+      logical :: returning, may_switch, held_now
 
       returning = cdef%opts%update == UPDATE_RETURN
       pfloor = cdef%opts%p_min_ratio*st%p_start
@@ -394,6 +411,8 @@ contains
       do j = 1, size(st%s)
          associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             call pair_kinematics(pr%t, pr%n, pr%nn, pr%w, pair_dofs(du, pr), dun, dut)
+            ! the normal force the last solution predicted for this pair (its linearisation)
+            fpred = st%fn(j) + md%kn*(dun - st%dun(j))
             st%dun(j) = dun
             st%dut(j) = dut
             if (ifc%law == LAW_IDEAL) then
@@ -402,6 +421,7 @@ contains
             end if
             u = s%un + dun
             may_switch = md%nswitch < MAX_SWITCH
+            held_now = .false.
             fn = 0.0_dp
             ft = 0.0_dp
             if (pr%area <= 0.0_dp) then
@@ -409,6 +429,10 @@ contains
                st%ft(j) = 0.0_dp
                cycle
             end if
+            ! RETURN: a closure within round-off of the zero-force point of the branch
+            ! is that point (closed, F_n = 0), not a lift-off
+            utol = 0.0_dp
+            if (returning) utol = 1.0e-9_dp*max(abs(s%un), abs(u), abs(md%ua - md%uthr))
 
             ! 1. open / closed (SPEC D5)
             if (.not. md%closed) then
@@ -431,6 +455,8 @@ contains
                   end if
                   md%kte = pr%area*tangential_stiffness(p, ifc%s, ifc%r_t(local_index(cdef, j)))
                   md%tstate = TS_STICK
+                  md%tsign = 0
+                  md%xb = 0.0_dp
                   call set_kt(ifc, md)
                   call flag(changed(j), md%nswitch, st%chatter)
                end if
@@ -443,28 +469,42 @@ contains
                else
                   fn = s%fn + md%kn*dun
                end if
-               if ((fn < 0.0_dp .or. u <= md%uthr) .and. may_switch) then
+               if (returning .and. u <= md%uthr - utol .and. s%closed .and. s%fn > 0.0_dp .and. &
+                   .not. (md%held .or. md%newly_closed) .and. may_switch) then
+                  ! RETURN, a loaded pair overshooting its zero-force point (a Newton step on a
+                  ! concave branch, m2 > 1): once per increment it is held by the secant from
+                  ! its start to that point, K (u - u_thr) <= 0, which the next solution
+                  ! brings back to the point; below it a second time, it opens
+                  md%held = .true.
+                  held_now = .true.
+                  md%kn = s%fn/max(s%un - md%uthr, tiny(1.0_dp))
+                  fn = md%kn*(u - md%uthr)
+                  call flag(changed(j), md%nswitch, st%chatter)
+               else if ((fn < 0.0_dp .or. u <= md%uthr - utol) .and. may_switch) then
                   md%closed = .false.
                   md%newly_closed = .false.
                   md%kn = 0.0_dp
                   md%tstate = TS_STICK
+                  md%tsign = 0
                   call set_kt(ifc, md)
                   fn = 0.0_dp
                   call flag(changed(j), md%nswitch, st%chatter)
                end if
             end if
 
-            ! 2. loading / unloading (SPEC §2.1): reversal starts the unloading branch at A
+            ! 2. loading / unloading (SPEC §2.1): reversal starts the unloading branch at
+            ! A = (u, p(u)) of the committed state, the pressure taken from the law
             if (md%closed .and. s%closed .and. .not. md%newly_closed .and. .not. md%on_unloading .and. &
                 dun < 0.0_dp .and. may_switch) then
                md%on_unloading = .true.
                md%ua = s%un
-               md%pa = s%fn/pr%area
+               md%pa = virgin_pressure(s%un, ifc%cn, ifc%m)
                md%uthr = reclose_threshold(ifc, .true., md%ua, md%pa)
                if (.not. returning) then
                   ! the increment is repeated with the unloading tangent; whether the pair
                   ! opens is decided with the displacements of that solution, not these
-                  md%kn = pr%area*unloading_tangent(max(md%pa, pfloor), ifc%cn2, ifc%m2)
+                  ! (the paper's eq. 4.10: the tangent at the pressure of the previous increment)
+                  md%kn = pr%area*unloading_tangent(max(s%fn/pr%area, pfloor), ifc%cn2, ifc%m2)
                   fn = s%fn + md%kn*dun
                else
                   fn = pr%area*normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, .true., md%ua, md%pa)
@@ -484,77 +524,155 @@ contains
                end if
             end if
 
-            ! Newton tangent for the next solve of a RETURN update
-            if (returning .and. md%closed) then
-               md%kn = max(pr%area*normal_tangent(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa), &
-                           pr%area*virgin_tangent(pfloor, ifc%cn, ifc%m), &
-                           fn/max(u - md%uthr, tiny(1.0_dp))*1.0e-3_dp)
-            end if
+            ! Newton stiffness for the next solve of a RETURN update
+            if (returning .and. md%closed .and. .not. held_now) &
+               md%kn = newton_normal_stiffness(ifc, md, pr%area, s%fn, st%fn(j), fpred, fn, u, dun)
 
             ! 3. tangential (SPEC §4.3 item 3 and 4)
-            if (md%closed .and. ifc%friction /= FRICTION_NONE .and. returning) then
-               ! RETURN: the bilinear law integrated exactly over the increment
-               limit = md%mu*fn
-               call bilinear_return(merge(0.0_dp, s%ft, md%newly_closed), dut, md%kte, ifc%kappa, limit, &
-                                    merge(0.0_dp, s%fy, md%newly_closed), ifc%hardening, ft, itrial)
-               if (itrial /= md%tstate .and. may_switch) then
-                  md%tstate = itrial
-                  call set_kt(ifc, md)
-                  call flag(changed(j), md%nswitch, st%chatter)
+            if (md%closed .and. ifc%friction /= FRICTION_NONE) then
+               if (returning) then
+                  call tangential_return(ifc, s, md, pr%area, dut, fn, may_switch, ft, changed(j), st%chatter)
+               else
+                  call tangential_explicit(ifc, s, md, dut, fn, may_switch, ft, changed(j), st%chatter)
                end if
-            else if (md%closed .and. ifc%friction /= FRICTION_NONE) then
-               limit = md%mu*fn
-               select case (md%tstate)
-               case (TS_STICK)
-                  ft = merge(0.0_dp, s%ft, md%newly_closed) + md%kte*dut
-                  ! onto the branch when |F_T| passes 0.625 mu F_n, or, after unloading
-                  ! from the branch or from slip, the largest force reached there
-                  if (ifc%hardening .and. abs(ft) > max(0.625_dp*limit, s%fy)*(1.0_dp + 1.0e-8_dp) .and. &
-                      may_switch) then
-                     ! onto the hardening branch: its slope for the whole increment (eq. 4.15, 4.17)
-                     md%tstate = TS_PLASTIC
-                     call set_kt(ifc, md)
-                     ft = merge(0.0_dp, s%ft, md%newly_closed) + md%kt*dut
-                     call flag(changed(j), md%nswitch, st%chatter)
-                  end if
-                  if (abs(ft) > limit*(1.0_dp + 1.0e-8_dp) .and. may_switch) then
-                     md%tstate = TS_SLIP
-                     call set_kt(ifc, md)
-                     ft = sign(limit, ft)
-                     call flag(changed(j), md%nswitch, st%chatter)
-                  end if
-               case (TS_PLASTIC)
-                  ft = s%ft + md%kt*dut
-                  trial = s%ft + md%kte*dut
-                  if ((dut*s%ft < 0.0_dp .or. abs(trial) < max(0.625_dp*limit, s%fy)) .and. may_switch) then
-                     ! unloading along k_T^e (Bild 2, BC), or an elastic trial below the branch
-                     md%tstate = TS_STICK
-                     call set_kt(ifc, md)
-                     ft = trial
-                     call flag(changed(j), md%nswitch, st%chatter)
-                  else if (abs(ft) > limit*(1.0_dp + 1.0e-8_dp) .and. may_switch) then
-                     md%tstate = TS_SLIP
-                     call set_kt(ifc, md)
-                     ft = sign(limit, ft)
-                     call flag(changed(j), md%nswitch, st%chatter)
-                  end if
-               case default
-                  trial = merge(0.0_dp, s%ft, md%newly_closed) + md%kte*dut
-                  if (abs(trial) < limit*(1.0_dp - 1.0e-8_dp) .and. may_switch) then
-                     md%tstate = TS_STICK       ! back inside the cone: stick again
-                     call set_kt(ifc, md)
-                     ft = trial
-                     call flag(changed(j), md%nswitch, st%chatter)
-                  else
-                     ft = sign(limit, trial)
-                  end if
-               end select
             end if
             st%fn(j) = fn
             st%ft(j) = ft
          end associate
       end do
    end subroutine evaluate_pairs
+
+   !> Normal spring stiffness of a closed rough pair for the next Newton
+   !! solution (RETURN): the tangent of its branch at its closure, except
+   !! * when the last solution predicted zero (or tensile) force for the pair:
+   !!   the chord to the branch's zero-force point, A p(u)/(u - u_thr), which
+   !!   ends a pair that unloads to zero force at u_thr in one step (the tangent
+   !!   p^(1-m2)/(cn2 m2) vanishes there for m2 < 1, and Newton on a root of
+   !!   order 1/m2 only halves the distance per solution for m2 = 0.5);
+   !! * at zero force (tangent zero): the secant over the increment, which
+   !!   does not vanish, so that a body held only by such pairs stays regular.
+   pure real(dp) function newton_normal_stiffness(ifc, md, area, fn0, fnprev, fpred, fn, u, dun) result(k)
+      type(interface_t), intent(in) :: ifc
+      type(pair_mode_t), intent(in) :: md
+      real(dp), intent(in) :: area     !! lumped area
+      real(dp), intent(in) :: fn0      !! committed force (start of the increment)
+      real(dp), intent(in) :: fnprev   !! force after the previous solution
+      real(dp), intent(in) :: fpred    !! force the previous solution predicted
+      real(dp), intent(in) :: fn, u    !! force and closure now
+      real(dp), intent(in) :: dun      !! closure increment so far
+      real(dp) :: fref, ktan
+      ! the force scale of the pair: its forces in this increment and, on the unloading
+      ! branch, the force at A (a pair resting at zero force has no other)
+      fref = max(fn0, abs(fnprev), fn, tiny(1.0_dp))
+      if (md%on_unloading) fref = max(fref, area*md%pa)
+      ktan = area*normal_tangent(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa)
+      if (fpred <= 1.0e-8_dp*fref .and. fn > 1.0e-12_dp*fref .and. u > md%uthr) then
+         k = fn/(u - md%uthr)
+      else if (ktan > 0.0_dp .and. fn > 1.0e-12_dp*fref) then
+         k = max(ktan, 1.0e-3_dp*fn/max(u - md%uthr, tiny(1.0_dp)))
+      else if (abs(dun) > 0.0_dp .and. abs(fn0 - fn) > 1.0e-12_dp*fref) then
+         ! (below the zero-force point: the secant to that point)
+         k = abs(fn0 - fn)/max(abs(u - dun - max(u, md%uthr)), tiny(1.0_dp))
+      else
+         ! at rest at zero force: the stiffness of the last solution (the tangent at
+         ! the floor pressure from begin_increment)
+         k = max(md%kn, area*max(ktan, virgin_tangent(fref/area, ifc%cn, ifc%m)))
+      end if
+   end function newton_normal_stiffness
+
+   !> RETURN: the tangential law integrated exactly over the increment at the
+   !! current normal force (bilinear_return, Masing memory); a new state or a
+   !! new direction of the branch or slip is a mode change.
+   pure subroutine tangential_return(ifc, s, md, area, dut, fn, may_switch, ft, changed, chatter)
+      type(interface_t), intent(in) :: ifc
+      type(pair_state_t), intent(in) :: s
+      type(pair_mode_t), intent(inout) :: md
+      real(dp), intent(in) :: area            !! lumped area of the pair
+      real(dp), intent(in) :: dut, fn
+      logical, intent(in) :: may_switch
+      real(dp), intent(out) :: ft
+      logical, intent(inout) :: changed, chatter
+      real(dp) :: xb
+      integer :: itrial, tsg
+      call bilinear_return(merge(0.0_dp, s%ft, md%newly_closed), dut, md%kte, ifc%kappa, md%mu*max(fn, 0.0_dp), &
+                           merge(0.0_dp, s%xb, md%newly_closed), ifc%hardening, ft, xb, itrial)
+      md%xb = xb
+      tsg = 0
+      if (itrial /= TS_STICK) tsg = nint(sign(1.0_dp, ft - xb))
+      ! at zero normal force (to round-off of the pair's forces) nothing holds the pair
+      ! tangentially: it slips with F_T = 0 in no particular direction
+      if (fn <= 1.0e-12_dp*max(s%fn, area*md%pa, tiny(1.0_dp))) then
+         ft = 0.0_dp
+         md%xb = 0.0_dp
+         itrial = TS_SLIP
+         tsg = 0
+      end if
+      if ((itrial /= md%tstate .or. tsg /= md%tsign) .and. may_switch) then
+         md%tstate = itrial
+         md%tsign = tsg
+         call set_kt(ifc, md)
+         call flag(changed, md%nswitch, chatter)
+      end if
+   end subroutine tangential_return
+
+   !> EXPLICIT (the paper): F_T = F_T,prev + K_T dU_T with the stiffness of the
+   !! assumed state for the whole increment (eqs. 4.15-4.18).  The paper's
+   !! reading of Bild 2 is kept for reproduction: onto the branch when |F_T|
+   !! passes 0.625 mu F_n or, after unloading (BC, elastic), the largest |F_T|
+   !! reached on the branch or in slip (fy), in either direction.
+   pure subroutine tangential_explicit(ifc, s, md, dut, fn, may_switch, ft, changed, chatter)
+      type(interface_t), intent(in) :: ifc
+      type(pair_state_t), intent(in) :: s
+      type(pair_mode_t), intent(inout) :: md
+      real(dp), intent(in) :: dut, fn
+      logical, intent(in) :: may_switch
+      real(dp), intent(out) :: ft
+      logical, intent(inout) :: changed, chatter
+      real(dp) :: limit, trial
+      limit = md%mu*fn
+      select case (md%tstate)
+      case (TS_STICK)
+         ft = merge(0.0_dp, s%ft, md%newly_closed) + md%kte*dut
+         if (ifc%hardening .and. abs(ft) > max(0.625_dp*limit, s%fy)*(1.0_dp + 1.0e-8_dp) .and. may_switch) then
+            ! onto the hardening branch: its slope for the whole increment (eq. 4.15, 4.17)
+            md%tstate = TS_PLASTIC
+            call set_kt(ifc, md)
+            ft = merge(0.0_dp, s%ft, md%newly_closed) + md%kt*dut
+            call flag(changed, md%nswitch, chatter)
+         end if
+         if (abs(ft) > limit*(1.0_dp + 1.0e-8_dp) .and. may_switch) then
+            md%tstate = TS_SLIP
+            call set_kt(ifc, md)
+            ft = sign(limit, ft)
+            call flag(changed, md%nswitch, chatter)
+         end if
+      case (TS_PLASTIC)
+         ft = s%ft + md%kt*dut
+         trial = s%ft + md%kte*dut
+         if ((dut*s%ft < 0.0_dp .or. abs(trial) < max(0.625_dp*limit, s%fy)) .and. may_switch) then
+            ! unloading along k_T^e (Bild 2, BC), or an elastic trial below the branch
+            md%tstate = TS_STICK
+            call set_kt(ifc, md)
+            ft = trial
+            call flag(changed, md%nswitch, chatter)
+         else if (abs(ft) > limit*(1.0_dp + 1.0e-8_dp) .and. may_switch) then
+            md%tstate = TS_SLIP
+            call set_kt(ifc, md)
+            ft = sign(limit, ft)
+            call flag(changed, md%nswitch, chatter)
+         end if
+      case default
+         trial = merge(0.0_dp, s%ft, md%newly_closed) + md%kte*dut
+         if (abs(trial) < limit*(1.0_dp - 1.0e-8_dp) .and. may_switch) then
+            md%tstate = TS_STICK       ! back inside the cone: stick again
+            call set_kt(ifc, md)
+            ft = trial
+            call flag(changed, md%nswitch, chatter)
+         else
+            ft = sign(limit, trial)
+         end if
+      end select
+   end subroutine tangential_explicit
 
    !> Forces and modes of an ideal pair for its current multipliers:
    !! F_n = max(0, lam_n + eps_n u_n), F_T = proj(lam_T + eps_T du_T) onto
@@ -691,7 +809,6 @@ contains
                   s%utp = s%utp + st%dut(j)
                   s%utp_gross = s%utp_gross + st%dut(j)
                   s%ve = s%ve + abs(st%dut(j))
-                  s%fy = max(s%fy, abs(s%ft))
                end if
                cycle
             end if
@@ -717,9 +834,11 @@ contains
                   s%ve = s%ve + abs(dutp)
                end if
                s%tstate = md%tstate
+               if (ifc%friction /= FRICTION_NONE) s%xb = md%xb
                if (md%tstate /= TS_STICK) s%fy = max(s%fy, abs(s%ft))
             else
                s%closed = .false.
+               s%xb = 0.0_dp
                s%fy = 0.0_dp
                s%fn = 0.0_dp
                s%ft = 0.0_dp

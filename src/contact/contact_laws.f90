@@ -142,40 +142,52 @@ contains
    end function tangential_stiffness
 
    !> Exact integration of the bilinear tangential law with the Coulomb
-   !! limit over one increment at fixed normal force (return mapping): from
-   !! the force f0, an increment du moves elastically (slope k_e) until the
-   !! force magnitude reaches the branch level fb = max(0.625 L, fy), then
-   !! along the hardening branch (slope kappa k_e) if it is on, and the force
-   !! is capped at the limit L = mu F_n (gross slip).  fy is the largest force
-   !! magnitude reached on the branch before: unloading from the branch or from
-   !! slip is elastic (Bild 2, BC) until that level is reached again.
-   !! tstate: 0 stick (elastic), 1 hardening branch, 2 slip.
-   pure subroutine bilinear_return(f0, du, ke, kappa, limit, fy, hardening, f, tstate)
-      real(dp), intent(in) :: f0, du, ke, kappa, limit, fy
+   !! limit over one increment at fixed normal force (return mapping).  The
+   !! law is read as linear kinematic hardening (Masing's rule): the elastic
+   !! range is the band |F - X| <= r_y, r_y = 0.625 L, centred on the back
+   !! force X, and the force is capped at the limit L = mu F_n (gross slip).
+   !! From the force f0 an increment du moves elastically (slope k_e) inside
+   !! the band, along the hardening branch (slope kappa k_e) at its edge, which
+   !! drags X along, and at +-L in slip, where |X| = L - r_y.  On a virgin
+   !! path (X = 0) this is the paper's curve (Bild 2: OA, AB, slip); after a
+   !! reversal the elastic range is 2 r_y wide, as Masing's rule and the
+   !! Mindlin-Deresiewicz microslip solution give.  X is a force; when L
+   !! changes it is clamped to |X| <= L - r_y.  Without the branch r_y = L and
+   !! X = 0 (elastic-perfectly plastic Coulomb).
+   !! tstate: 0 stick (elastic), 1 hardening branch, 2 slip; the sign of the
+   !! branch or slip direction is that of f - x.
+   !! Ref: G. Masing, Eigenspannungen und Verfestigung beim Messing (1926);
+   !! R. D. Mindlin, H. Deresiewicz, J. Appl. Mech. 20 (1953) 327-344.
+   pure subroutine bilinear_return(f0, du, ke, kappa, limit, x0, hardening, f, x, tstate)
+      real(dp), intent(in) :: f0      !! force at the start of the increment
+      real(dp), intent(in) :: du      !! tangential displacement increment
+      real(dp), intent(in) :: ke      !! elastic stiffness
+      real(dp), intent(in) :: kappa   !! branch slope / elastic slope
+      real(dp), intent(in) :: limit   !! L = mu F_n (>= 0)
+      real(dp), intent(in) :: x0      !! back force at the start of the increment
       logical, intent(in) :: hardening
-      real(dp), intent(out) :: f
+      real(dp), intent(out) :: f      !! force at the end of the increment
+      real(dp), intent(out) :: x      !! back force at the end of the increment
       integer, intent(out) :: tstate
-      real(dp) :: trial, fb, dsign, du_el
+      real(dp) :: trial, ry, xcap, dsign
+      ry = merge(0.625_dp*limit, limit, hardening)
+      xcap = max(limit - ry, 0.0_dp)
+      x = min(max(x0, -xcap), xcap)
       trial = f0 + ke*du
       tstate = 0
       f = trial
-      fb = min(max(0.625_dp*limit, fy), limit)
-      if (.not. hardening) fb = limit
-      if (abs(trial) <= fb) return
-      dsign = sign(1.0_dp, trial)
-      if (hardening .and. fb < limit) then
-         ! elastic up to the branch level, then along the branch
-         if (f0*dsign >= fb) then
-            du_el = 0.0_dp
-            f = f0 + kappa*ke*du
-         else
-            du_el = (fb*dsign - f0)/ke
-            f = fb*dsign + kappa*ke*(du - du_el)
-         end if
+      if (abs(trial - x) <= ry) return
+      dsign = sign(1.0_dp, trial - x)
+      if (hardening) then
+         f = x + dsign*ry + kappa*(trial - x - dsign*ry)
          tstate = 1
-         if (abs(f) <= limit) return
+         if (abs(f) <= limit) then
+            x = f - dsign*ry
+            return
+         end if
       end if
-      f = limit*dsign
+      f = dsign*limit
+      x = dsign*xcap
       tstate = 2
    end subroutine bilinear_return
 

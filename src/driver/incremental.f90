@@ -45,6 +45,7 @@ module incremental
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, commit_increment, &
                                 law_drift, check_invariants, augment_multipliers
    use contact_start, only: init_contact_states, start_pressure
+   use increment_attempt, only: attempt_t, attempt_failure
    use contact_fields, only: build_contact_fields, pair_spacing
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary
@@ -119,17 +120,6 @@ module incremental
       logical :: quiet = .false.
       integer(i8) :: t0 = 0, rate = 1              !! clock at the start of the run
    end type outputs_t
-
-   !> Outcome of one attempt at an increment (nothing committed yet).
-   type :: attempt_t
-      real(dp), allocatable :: du(:, :)            !! displacement increment
-      real(dp), allocatable :: carry(:)            !! out-of-balance force left, free equations
-      integer :: solutions = 0                     !! linear solutions
-      integer :: repeats = 0                       !! solutions caused by mode changes
-      logical :: converged = .false.
-      logical :: changing = .false.                !! springs still changed their modes at the end
-      real(dp) :: rnorm = 0.0_dp                   !! relative out-of-balance force
-   end type attempt_t
 
 contains
 
@@ -358,12 +348,12 @@ contains
             call attempt_increment(an, m, res%contact, dlam, carry, fext_new, first, att, status)
             if (.not. m%autoinc) then
                if (.not. status%ok()) exit deck
-               call failed_convergence(an, att, res%contact, nstep + 1, status)
+               call failed_convergence(m, an, att, res%contact, nstep + 1, status)
                if (.not. status%ok()) exit deck
             else if (.not. status%ok() .or. .not. att%converged .or. res%contact%chatter) then
                ! cut the step and try again from the committed state
                if (s <= m%autoinc_min*(1.0_dp + 1.0e-9_dp)) then
-                  if (status%ok()) call failed_convergence(an, att, res%contact, nstep + 1, status)
+                  if (status%ok()) call failed_convergence(m, an, att, res%contact, nstep + 1, status)
                   if (status%ok()) call status%set(STAT_NO_CONVERGENCE, 'contact states keep changing in increment '// &
                                                    itoa(nstep + 1)//' even at the smallest step')
                   status%message = status%message//' (automatic increments: smallest step '// &
@@ -426,7 +416,7 @@ contains
       logical, allocatable :: changed(:)
       integer :: iter, maxit
       real(dp) :: fscale, dnorm
-      logical :: need_matrix, done, again
+      logical :: need_matrix, done, again, newton
 
       allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), rpred(an%springs%nd, an%npair), &
                 changed(an%npair))
@@ -440,6 +430,8 @@ contains
       att%changing = .false.
       att%rnorm = 0.0_dp
       st%chatter = .false.
+      newton = an%returning .and. st%has_rough
+      att%dnorm = 0.0_dp
       call load_increment(an%coup, an%map, an%fcase, an%ucase, an%restrained, dlam, carry, rhs, att%du)
       fscale = max(maxval([0.0_dp, abs(rhs)]), maxval(abs(fext_new)), 1.0e-300_dp)
       ! spring forces and modes at the start of the increment
@@ -464,6 +456,12 @@ contains
             ! body's reference node belongs to no element) has no other force to
             ! measure its out-of-balance force against
             if (fscale <= 1.0e-300_dp .and. an%map%neq > 0) fscale = max(maxval(abs(rhs)), 1.0e-300_dp)
+            ! an increment that holds a zero load (nothing but the carried out-of-balance
+            ! force drives it) is measured against the last increment's scale
+            ! (the load, a sum of increments, is zero to round-off of the run's forces)
+            if (an%map%neq > 0 .and. maxval(abs(fext_new)) <= 1.0e-12_dp*an%force_scale) then
+               if (maxval(abs(rhs - carry)) <= 1.0e-12_dp*an%force_scale) fscale = max(fscale, att%fscale)
+            end if
          end if
          ! the solution at (at least) the contact equations' dofs
          call an%sys%solve(rhs, ddu, status)
@@ -485,8 +483,9 @@ contains
          ! ... against the actual ones, after the mode checks
          call update_modes(again)
          if (again) cycle
+         att%dnorm = dnorm      ! (counts for the Newton return of rough pairs only)
          if (att%rnorm <= m%contact%opts%tol_residual .and. &
-             (.not. an%returning .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
+             (.not. newton .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
             if (.not. st%has_ideal) then
                att%converged = .true.
                exit
@@ -503,9 +502,10 @@ contains
             call update_modes(again)
             if (again) cycle
          end if
-         need_matrix = an%returning .and. .not. an%modified
+         need_matrix = newton .and. .not. an%modified
       end do
       att%carry = rhs
+      att%fscale = fscale
    contains
       !> Modes and forces of the pairs for the current displacements, and the
       !! out-of-balance force; again: some mode changed, so the increment is
@@ -517,6 +517,8 @@ contains
          att%rnorm = 0.0_dp
          if (an%map%neq > 0) att%rnorm = maxval(abs(rhs))/fscale
          att%changing = any(changed)
+         att%nchanged = count(changed)
+         att%first_changed = findloc(changed, .true., dim=1)
          again = att%changing
          if (again) then
             att%repeats = att%repeats + 1
@@ -555,33 +557,18 @@ contains
                                            'has no support once they open (normal) or slip (tangential)'
    end subroutine describe_singular
 
-   !> An attempt that ended without convergence: a RETURN increment out of
-   !! balance, or springs still changing their modes, is a failure; an EXPLICIT
-   !! increment whose slip forces have not settled is accepted (its
-   !! out-of-balance force is carried into the next increment).
-   subroutine failed_convergence(an, att, st, inc, status)
+   !> An attempt that ended without convergence: the failure (exit 3) naming
+   !! the criterion that failed, unless an EXPLICIT increment whose slip forces
+   !! have not settled is accepted (attempt_failure).
+   subroutine failed_convergence(m, an, att, st, inc, status)
+      type(model_t), intent(in) :: m
       type(analysis_t), intent(in) :: an
       type(attempt_t), intent(in) :: att
       type(contact_state_t), intent(in) :: st
       integer, intent(in) :: inc
       type(status_t), intent(inout) :: status
-      if (.not. an%has_contact .or. att%converged) return
-      if (att%changing .or. st%chatter) then
-         call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
-                         itoa(att%solutions)//' solutions (contact states keep changing); '// &
-                         'reduce the increment size, raise CONTACT REPEATS or use OPTIONS AUTOINC')
-      else if (st%has_ideal .and. att%rnorm <= 1.0e-8_dp) then
-         call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
-                         itoa(att%solutions)//' solutions: ideal contact still penetrates or slips by '// &
-                         rtoa(st%violation)//' > the tolerance '//rtoa(st%tol_pen)//' after '// &
-                         itoa(st%augmentations)//' multiplier updates; raise CONTACT REPEATS or the AUGMENTED '// &
-                         'factor, or use OPTIONS AUTOINC')
-      else if (an%returning .or. st%has_ideal) then
-         call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
-                         itoa(att%solutions)//' solutions (relative out-of-balance force '// &
-                         rtoa(att%rnorm)//'); reduce the increment size, raise CONTACT REPEATS or use '// &
-                         'OPTIONS AUTOINC')
-      end if
+      if (an%has_contact) call attempt_failure(att, st, m%contact%opts, an%returning .and. st%has_rough, m%autoinc, &
+                                               an%maxrep, inc, status)
    end subroutine failed_convergence
 
    !> Warning when the method is used outside its comfort zone (once per

@@ -367,6 +367,12 @@ contains
       if (abs(v4 - v2) <= 1.0e-12_dp*v2 .and. v3 > v1) call d%error_at(ic, 31, 'E-CONTACT', &
              'CONTACT/NORMAL: CN2 = '//rtoa(v3)//' > CN = '//rtoa(v1)//' with M2 = M: the unloading '// &
              'branch would be softer than loading and the residual closure negative (SPEC 2.1)')
+      ! M2 < M: u_res = CN p_A^M - CN2 p_A^M2 < 0 for every reversal pressure p_A below
+      ! (CN2/CN)^(1/(M - M2)), and every load path passes through small pressures
+      if (v4 < v2*(1.0_dp - 1.0e-12_dp) .and. v2 > 0.0_dp .and. v3 > 0.0_dp) call d%error_at(ic, 41, 'E-CONTACT', &
+             'CONTACT/NORMAL: M2 (columns 41-50) expected at least M = '//rtoa(v2)//', found '//rtoa(v4)// &
+             ': with M2 < M the residual closure CN p_A^M - CN2 p_A^M2 is negative for every reversal '// &
+             'pressure p_A below '//rtoa((v3/v1)**(1.0_dp/(v2 - v4)))//' (in the UNITS of the interface)')
       s%law%cn_in = v1
       s%law%m_in = v2
       s%law%cn2_in = v3

@@ -134,9 +134,11 @@ module contact_types
       integer :: line = 0                   !! deck line that created the pair
    end type contact_pair_t
 
-   !> Options of the contact algorithm (SPEC §4.5), with the paper's defaults.
+   !> Options of the contact algorithm (SPEC §4.5).  The default update is
+   !! the return to the laws (Newton), which ends every increment on the laws;
+   !! the paper's explicit update is SCHEME INCREMENTAL.
    type :: contact_options_t
-      integer :: update = UPDATE_EXPLICIT
+      integer :: update = UPDATE_RETURN
       logical :: first_iterate = .false.    !! iterate the first increment with the secant
       integer :: max_repeats = 30           !! cap on repeats of one increment
       real(dp) :: p_start = -1.0_dp         !! starting pressure p_m (< 0: from the first increment)

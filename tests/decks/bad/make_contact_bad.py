@@ -23,6 +23,9 @@ case("contact_m_negative", N, "NORMAL           1.0      -0.5\n",
      r"\[E-CONTACT\]: CONTACT/NORMAL: M \(columns 21-30\) expected a positive exponent m, found -5")
 case("contact_cn2_softer", N, "NORMAL           1.0       0.5       2.0\n",
      r"\[E-CONTACT\]: CONTACT/NORMAL: CN2 = 2\.0+E\+00 > CN = 1\.0+E\+00 with M2 = M")
+case("contact_m2_below_m", N, "NORMAL           1.0       0.5       0.5       0.4\n",
+     r"\[E-CONTACT\]: CONTACT/NORMAL: M2 \(columns 41-50\) expected at least M = 5\.0+E-01, found 4\.0+E-01: "
+     r"with M2 < M the residual closure")
 case("contact_mu_negative", "FRICTION  NONE\n", "FRICTION  COULOMB      -0.1\n",
      r"\[E-CONTACT\]: CONTACT/FRICTION: MU \(columns 21-30\) expected a friction coefficient >= 0, found -1")
 case("contact_beta_above_one", "FRICTION  NONE\n", "FRICTION  FREDRIKSS       0.2       1.5     275.0\n",
