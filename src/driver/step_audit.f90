@@ -114,6 +114,7 @@ contains
       end if
       step%imbalance = imbalance
       step%violations = nbad
+      step%frozen = size(frozen)
       if (size(frozen) > 0) d = 'contact states frozen after '//itoa(MAX_SWITCH)//' mode changes (chatter) at '// &
                                 itoa(size(frozen))//' pair(s):'//pair_list(frozen)
       if (has_contact .and. step%drift > DRIFT_LIMIT) call add(d, 'normal spring forces up to '// &
@@ -141,8 +142,8 @@ contains
       if (len(step%doubts) == 0) return
       doubts%steps = doubts%steps + 1
       if (doubts%first == 0) doubts%first = step%step
-      if (index(step%doubts, 'frozen') > 0) doubts%frozen = doubts%frozen + 1
-      if (index(step%doubts, 'off the interface law') > 0) doubts%drift = doubts%drift + 1
+      if (step%frozen > 0) doubts%frozen = doubts%frozen + 1
+      if (step%contact .and. step%drift > DRIFT_LIMIT) doubts%drift = doubts%drift + 1
       if (step%violations > 0) doubts%violations = doubts%violations + 1
       if (doubts%steps <= MAX_DOUBT_LINES) then
          if (len(doubts%details) > 0) doubts%details = doubts%details//new_line('a')

@@ -65,6 +65,7 @@ module records
       real(dp) :: drift = 0.0_dp             !! largest departure of F_n from its curve, relative (contact)
       real(dp) :: imbalance = 0.0_dp         !! largest force imbalance of a body, relative
       integer :: violations = 0              !! invariant violations (SPEC §7)
+      integer :: frozen = 0                  !! pairs whose modes were frozen (chatter)
       real(dp) :: penetration = 0.0_dp       !! ideal contact: largest |u_n| (closed) or stick slip
       integer :: augmentations = 0           !! ideal contact: multiplier updates
       logical :: converged = .true.          !! accepted (the attribute `converged` of the group)
