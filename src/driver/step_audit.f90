@@ -256,14 +256,14 @@ contains
       k = 0
    end function first_bad
 
-   !> A fraction as a percentage with one decimal (E-notation when huge).
+   !> A fraction as a percentage with one decimal.
    function percent(x) result(s)
       real(dp), intent(in) :: x
       character(len=:), allocatable :: s
       if (abs(x) < 1.0e6_dp) then
          s = rtoa(100.0_dp*x, '(f0.1)')
       else
-         s = rtoa(100.0_dp*x)
+         s = 'more than 1E+08'        ! 100 x itself could overflow
       end if
    end function percent
 
