@@ -20,7 +20,7 @@ module step_audit
    use kinds, only: dp, stderr
    use errors, only: status_t, STAT_NONFINITE
    use strings, only: itoa, rtoa
-   use records, only: step_record_t, body_fields_t, run_doubts_t, DRIFT_LIMIT, MAX_DOUBT_LINES
+   use records, only: step_record_t, body_fields_t, run_doubts_t, DRIFT_LIMIT, MAX_DOUBT_LINES, STEP_CONVERGED
    use contact_types, only: contact_def_t, LAW_ROUGH
    use contact_laws, only: normal_pressure
    use contact_algorithm, only: contact_state_t, check_invariants, frozen_pairs, MAX_SWITCH
@@ -85,8 +85,9 @@ contains
    end subroutine check_finite_step
 
    !> The invariants, frozen states and drift of an accepted step: sets
-   !! step%violations, step%imbalance and step%doubts ('' if the step is
-   !! sound).
+   !! step%violations, step%imbalance, step%frozen, step%doubts ('' if the
+   !! step is sound) and step%converged (false for an unsettled or frozen
+   !! step).
    subroutine audit_step(cdef, st, ve_old, imbalance, has_contact, step)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(in) :: st       !! committed states of the step
@@ -115,6 +116,8 @@ contains
       step%imbalance = imbalance
       step%violations = nbad
       step%frozen = size(frozen)
+      ! frozen modes end the iteration without meeting its criterion
+      step%converged = step%status == STEP_CONVERGED .and. step%frozen == 0
       if (size(frozen) > 0) d = 'contact states frozen after '//itoa(MAX_SWITCH)//' mode changes (chatter) at '// &
                                 itoa(size(frozen))//' pair(s):'//pair_list(frozen)
       if (has_contact .and. step%drift > DRIFT_LIMIT) call add(d, 'normal spring forces up to '// &

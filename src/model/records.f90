@@ -68,7 +68,7 @@ module records
       integer :: frozen = 0                  !! pairs whose modes were frozen (chatter)
       real(dp) :: penetration = 0.0_dp       !! ideal contact: largest |u_n| (closed) or stick slip
       integer :: augmentations = 0           !! ideal contact: multiplier updates
-      logical :: converged = .true.          !! accepted (the attribute `converged` of the group)
+      logical :: converged = .true.          !! met its convergence criterion (not unsettled, no frozen pair)
       integer :: status = STEP_CONVERGED     !! STEP_CONVERGED or STEP_UNSETTLED
       logical :: contact = .false.           !! the model has contact: residual and drift apply
       logical :: ideal = .false.             !! some interface is ideal: penetration, augmentations apply
