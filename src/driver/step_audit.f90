@@ -100,8 +100,7 @@ contains
       character(len=:), allocatable :: imsg, d
 
       nbad = 0
-      imsg = ''
-      d = ''
+      allocate (character(len=0) :: imsg, d)
       allocate (bad(0), frozen(0))
       if (has_contact) then
          call check_invariants(st, ve_old, nbad, imsg, bad)
@@ -120,18 +119,16 @@ contains
       step%converged = step%status == STEP_CONVERGED .and. step%frozen == 0
       if (size(frozen) > 0) d = 'contact states frozen after '//itoa(MAX_SWITCH)//' mode changes (chatter) at '// &
                                 itoa(size(frozen))//' pair(s):'//pair_list(frozen)
-      if (has_contact .and. step%drift > DRIFT_LIMIT) call add(d, 'normal spring forces up to '// &
-         percent(step%drift)//' % off the interface law (limit '//itoa(nint(100.0_dp*DRIFT_LIMIT))// &
-         ' %; the most at pair '//itoa(worst_drift_pair(cdef, st))//')')
-      if (nbad > 0) call add(d, itoa(nbad)//' invariant violation(s): '//imsg)
+      if (has_contact .and. step%drift > DRIFT_LIMIT) then
+         if (len(d) > 0) d = d//'; '
+         d = d//'normal spring forces up to '//percent(step%drift)//' % off the interface law (limit '// &
+             itoa(nint(100.0_dp*DRIFT_LIMIT))//' %; the most at pair '//itoa(worst_drift_pair(cdef, st))//')'
+      end if
+      if (nbad > 0) then
+         if (len(d) > 0) d = d//'; '
+         d = d//itoa(nbad)//' invariant violation(s): '//imsg
+      end if
       step%doubts = d
-   contains
-      subroutine add(s, more)
-         character(len=:), allocatable, intent(inout) :: s
-         character(len=*), intent(in) :: more
-         if (len(s) > 0) s = s//'; '
-         s = s//more
-      end subroutine add
    end subroutine audit_step
 
    !> Count a doubtful step in the run's doubts, keep its line and say so on
