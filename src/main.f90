@@ -3,10 +3,12 @@
 !! Parses the arguments, reads and defines the model (model_input), runs the
 !! driver and maps the outcome to an exit code: 0 success, 1 internal error,
 !! 2 input error (deck or command line), 3 numerical failure (finished
-!! increments are kept).
+!! increments are kept), 4 completed with doubts (frozen contact states, law
+!! drift beyond its limit or invariant violations; the increments and pairs
+!! are named).
 program kontakt2d
    use kinds, only: stdout, stderr
-   use errors, only: error_list_t, status_t, terminate, EXIT_OK, EXIT_INPUT, EXIT_NUMERICAL, STAT_INPUT
+   use errors, only: error_list_t, status_t, terminate, EXIT_OK, EXIT_INPUT, EXIT_NUMERICAL, EXIT_DOUBTFUL, STAT_INPUT
    use strings, only: upper
    use model, only: model_t
    use model_input, only: read_model
@@ -75,6 +77,7 @@ program kontakt2d
       if (status%code == STAT_INPUT) call terminate(EXIT_INPUT)
       call terminate(EXIT_NUMERICAL)
    end if
+   if (res%doubts%steps > 0) call terminate(EXIT_DOUBTFUL)
    call terminate(EXIT_OK)
 
 contains
@@ -120,6 +123,8 @@ contains
       write (stdout, '(a)') '  -h, --help            print this help and exit'
       write (stdout, '(a)') ''
       write (stdout, '(a)') 'exit codes: 0 success, 1 internal error, 2 input error (deck or command line),'
-      write (stdout, '(a)') '            3 numerical failure (finished increments are kept in the result file)'
+      write (stdout, '(a)') '            3 numerical failure (finished increments are kept in the result file),'
+      write (stdout, '(a)') '            4 completed with doubts (frozen contact states, law drift, invariant violations:'
+      write (stdout, '(a)') '              the increments and pairs are named; result file status "doubtful")'
    end subroutine print_help
 end program kontakt2d

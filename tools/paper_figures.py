@@ -48,7 +48,8 @@ def main(argv=None):
         names = paper.names_of(which)
         t0 = time.time()
         done = paper.run_examples(exe, args.out, names, max(1, args.jobs))
-        bad = [n for n, (rc, dt) in done.items() if rc != 0]
+        # exit code 4: completed with doubts (the paper's explicit scheme drifts off the law)
+        bad = [n for n, (rc, dt) in done.items() if rc not in (0, 4)]
         print("%d runs in %.0f s%s" % (len(done), time.time() - t0, ("; failed: " + ", ".join(bad)) if bad else ""))
     for w in which:
         print("example %s ..." % w, flush=True)

@@ -7,9 +7,10 @@
 !! call lays it out.  Ref: Hinton & Owen (1977), STRESS (stresses at the Gauss
 !! points), nodal averaging of the element extrapolations.
 module body_fields
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
-   use errors, only: status_t, STAT_JACOBIAN
-   use strings, only: itoa
+   use errors, only: status_t, STAT_JACOBIAN, STAT_NONFINITE
+   use strings, only: itoa, rtoa
    use model, only: model_t, MAX_NODE
    use contact_types, only: PAIR_RIGID
    use restraint_check, only: find_bodies
@@ -20,7 +21,7 @@ module body_fields
    use assembly, only: coupling_t, restrained_forces, element_error
    implicit none
    private
-   public :: recover_stresses, update_reactions, number_bodies, body_imbalance
+   public :: recover_stresses, update_reactions, number_bodies, body_imbalance, zero_fields, stiffness_range
 
 contains
 
@@ -64,6 +65,51 @@ contains
       end do
    end subroutine recover_stresses
 
+   !> Body fields of the model at rest: displacements, reactions and stresses
+   !! zero, no dof restrained yet, the Gauss points laid out.  For the start
+   !! of a run, and for the result file of a run that stopped before its
+   !! first increment.
+   subroutine zero_fields(m, body)
+      type(model_t), intent(in) :: m
+      type(body_fields_t), intent(inout) :: body
+      if (.not. allocated(body%disp)) allocate (body%disp(2, m%npoin))
+      if (.not. allocated(body%react)) allocate (body%react(2, m%npoin))
+      if (.not. allocated(body%restrained)) allocate (body%restrained(2, m%npoin))
+      if (.not. allocated(body%gp_start)) call lay_out_gauss_points(m, body)
+      body%disp = 0.0_dp
+      body%react = 0.0_dp
+      body%restrained = .false.
+      body%sig_nd = 0.0_dp
+      body%sig_gp = 0.0_dp
+   end subroutine zero_fields
+
+   !> The bodies' stiffness K_AB in the range a factorization works in.  A
+   !! non-finite diagonal (a modulus or thickness that overflows) stops the
+   !! run (STAT_NONFINITE).  When a factorization has failed (status not ok
+   !! on entry) and the diagonal exceeds sqrt(huge) -- the elimination forms
+   !! products of two entries -- the message names the stiffness instead of
+   !! blaming the restraints.
+   subroutine stiffness_range(map, diag, status)
+      type(dof_map_t), intent(in) :: map       !! equation numbers (names the node and dof)
+      real(dp), intent(in) :: diag(:)          !! (neq) diagonal of K_AB [force/length]
+      type(status_t), intent(inout) :: status
+      integer :: ieq
+      if (size(diag) == 0) return
+      if (.not. all(ieee_is_finite(diag))) then
+         ieq = findloc(ieee_is_finite(diag), .false., 1)
+         call status%set(STAT_NONFINITE, 'the bodies'' stiffness matrix holds non-finite numbers (its diagonal '// &
+                         'term at '//map%describe(ieq)//'): a material''s E or thickness overflows double '// &
+                         'precision; check them and their units')
+      else if (.not. status%ok()) then
+         ieq = maxloc(abs(diag), 1)
+         if (abs(diag(ieq)) <= sqrt(huge(1.0_dp))) return
+         call status%set(STAT_NONFINITE, 'the bodies'' stiffness matrix is out of the range of double precision '// &
+                         '(its diagonal term '//rtoa(diag(ieq))//' at '//map%describe(ieq)//' exceeds sqrt(huge) = '// &
+                         rtoa(sqrt(huge(1.0_dp)))//'; the factorization reported: '//status%message// &
+                         '): check the materials'' E and thickness and their units')
+      end if
+   end subroutine stiffness_range
+
    !> Count the Gauss points of every element; allocate the Gauss-point and
    !! nodal stress arrays.
    subroutine lay_out_gauss_points(m, body)
@@ -104,36 +150,69 @@ contains
       where (body%restrained) body%react = fr + fsp - fext
    end subroutine update_reactions
 
-   !> The body of every node (0: none), for the equilibrium check.  A rigid
-   !! body's reference node belongs to no element: a body of its own.
+   !> The body of every node in each direction (0: none), for the
+   !! equilibrium check.  A rigid body's reference node belongs to no
+   !! element: a body of its own.  Bodies joined by TIES exchange forces
+   !! through the tied dofs: for the direction of a tie they are one body
+   !! (the tie force is internal to it), for the other direction they stay
+   !! apart (a tie of the x dofs carries no y force).
    subroutine number_bodies(m, body, nbody)
       type(model_t), intent(in) :: m
-      integer, allocatable, intent(out) :: body(:)   !! (npoin)
-      integer, intent(out) :: nbody
-      integer :: j
-      allocate (body(m%npoin))
-      call find_bodies(m, reshape([integer ::], [2, 0]), body, nbody)
+      integer, allocatable, intent(out) :: body(:, :)   !! (2, npoin) body of every node, x and y balance
+      integer, intent(out) :: nbody                      !! bodies (the larger count of the two directions)
+      integer, allocatable :: mesh_body(:), links(:, :), rigid(:)
+      integer :: j, idir, nmesh, nlink, k, nb(2)
+      allocate (mesh_body(m%npoin), body(2, m%npoin), rigid(m%npoin))
+      call find_bodies(m, reshape([integer ::], [2, 0]), mesh_body, nmesh)
+      ! reference nodes of rigid bodies: a body of their own in both directions
+      rigid = 0
       do j = 1, size(m%contact%pairs)
          if (m%contact%pairs(j)%kind /= PAIR_RIGID) cycle
-         if (body(m%contact%pairs(j)%node_b) > 0) cycle
-         nbody = nbody + 1
-         body(m%contact%pairs(j)%node_b) = nbody
+         if (mesh_body(m%contact%pairs(j)%node_b) > 0) cycle
+         rigid(m%contact%pairs(j)%node_b) = 1
       end do
+      do idir = 1, 2
+         nlink = 0
+         if (allocated(m%ties)) nlink = count(m%ties(3, :) == idir)
+         allocate (links(2, nlink))
+         k = 0
+         do j = 1, nlink_total()
+            if (m%ties(3, j) /= idir) cycle
+            k = k + 1
+            links(:, k) = m%ties(1:2, j)
+         end do
+         call find_bodies(m, links, body(idir, :), nb(idir))
+         deallocate (links)
+         do j = 1, m%npoin
+            if (rigid(j) == 0 .or. body(idir, j) > 0) cycle
+            nb(idir) = nb(idir) + 1
+            body(idir, j) = nb(idir)
+         end do
+      end do
+      nbody = maxval(nb)
+   contains
+      integer function nlink_total()
+         nlink_total = 0
+         if (allocated(m%ties)) nlink_total = size(m%ties, 2)
+      end function nlink_total
    end subroutine number_bodies
 
    !> Largest |sum of the forces on a body| relative to the force scale of the run.
    !! In axisymmetry only the axial resultant must vanish: the radial ring forces
    !! of a body in equilibrium do not add up to zero (its hoop stresses carry them).
    pure real(dp) function body_imbalance(body, nbody, f, scale, axisymmetric) result(worst)
-      integer, intent(in) :: body(:), nbody
+      integer, intent(in) :: body(:, :)      !! (2, npoin) body of every node for the x and y balance
+      integer, intent(in) :: nbody           !! bodies (at least the largest entry of body)
       real(dp), intent(in) :: f(:, :)        !! (2, npoin) external + reactions - spring internal forces
       real(dp), intent(in) :: scale          !! largest nodal force seen so far
       logical, intent(in) :: axisymmetric    !! check the axial (z) resultant only
       real(dp) :: total(2, max(nbody, 1))
-      integer :: ip
+      integer :: ip, idir
       total = 0.0_dp
-      do ip = 1, size(body)
-         if (body(ip) > 0) total(:, body(ip)) = total(:, body(ip)) + f(:, ip)
+      do ip = 1, size(body, 2)
+         do idir = 1, 2
+            if (body(idir, ip) > 0) total(idir, body(idir, ip)) = total(idir, body(idir, ip)) + f(idir, ip)
+         end do
       end do
       if (axisymmetric) then
          worst = maxval(abs(total(2, :)))/scale

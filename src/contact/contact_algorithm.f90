@@ -63,10 +63,13 @@ module contact_algorithm
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
              pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
-             start_force_normal
+             start_force_normal, frozen_pairs
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
+   public :: MAX_SWITCH
 
-   integer, parameter :: MAX_SWITCH = 6   !! mode changes of one pair within one increment
+   !> Mode changes of one rough pair within one increment; a pair that reaches
+   !! it keeps its last mode for the rest of the increment (frozen: chatter).
+   integer, parameter :: MAX_SWITCH = 6
 
    !> Committed state of one pair (end of an increment).
    type :: pair_state_t
@@ -101,7 +104,7 @@ module contact_algorithm
       real(dp) :: kt = 0.0_dp             !! tangential spring stiffness for the solve
       real(dp) :: uthr = 0.0_dp           !! closure at which the pair (re)closes
       real(dp) :: mu = 0.0_dp
-      integer :: nswitch = 0
+      integer :: nswitch = 0              !! mode changes in the increment so far (see MAX_SWITCH)
       real(dp) :: sdir = 0.0_dp           !! ideal law: direction (+-1) of the current slip
    end type pair_mode_t
 
@@ -854,17 +857,20 @@ contains
    !> SPEC §7 invariants of the committed states: no closed pair in tension,
    !! |F_T| <= mu F_n, the effective slip never decreases (`ve_old` is the
    !! previous increment's).  Returns the number of violations and a message
-   !! naming the first one.
-   subroutine check_invariants(st, ve_old, nbad, msg)
+   !! naming the first one; `pairs`, every pair that violates one.
+   subroutine check_invariants(st, ve_old, nbad, msg, pairs)
       type(contact_state_t), intent(in) :: st
       real(dp), intent(in) :: ve_old(:)
       integer, intent(out) :: nbad
       character(len=:), allocatable, intent(out) :: msg
+      integer, allocatable, intent(out), optional :: pairs(:)   !! the pairs concerned, ascending
       real(dp) :: fscale, tol
       integer :: j
+      logical :: hit(size(st%s))
       character(len=24) :: b
       nbad = 0
       msg = ''
+      hit = .false.
       fscale = max(maxval([0.0_dp, abs(st%s%fn)]), tiny(1.0_dp))
       tol = 1.0e-10_dp*fscale
       do j = 1, size(st%s)
@@ -878,13 +884,27 @@ contains
                call bad('pair '//trim(b)//': the effective slip decreased')
          end associate
       end do
+      if (present(pairs)) pairs = pack([(j, j=1, size(st%s))], hit)
    contains
       subroutine bad(text)
          character(len=*), intent(in) :: text
          nbad = nbad + 1
+         hit(j) = .true.
          if (nbad == 1) msg = text
       end subroutine bad
    end subroutine check_invariants
+
+   !> The rough pairs whose modes were frozen in the current increment: they
+   !! changed their modes MAX_SWITCH times and kept the last one (chatter).
+   !! Ideal pairs are never frozen (their active set iterates to the end).
+   pure function frozen_pairs(cdef, st) result(list)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(in) :: st
+      integer, allocatable :: list(:)      !! pair numbers, ascending
+      integer :: j
+      list = pack([(j, j=1, size(st%md))], [(st%md(j)%nswitch >= MAX_SWITCH .and. &
+                                             .not. is_ideal(cdef, j), j=1, size(st%md))])
+   end function frozen_pairs
 
    !> Largest departure of a closed pair's normal force from its curve,
    !! |F_n - A p(u_n)| / max F_n: the drift of the explicit scheme (SPEC §4.2).

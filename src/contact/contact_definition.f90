@@ -25,7 +25,7 @@ module contact_definition
                             MATCH_SEGMENT, RIGID_CIRCLE
    use contact_spec, only: iface_spec_t
    use contact_laws, only: convert_interface
-   use contact_pairing, only: node_pairs, projected_pairs
+   use contact_pairing, only: node_pairs, projected_pairs, E_COARSE_SIDE
    use restraint_check, only: find_bodies
    implicit none
    private
@@ -46,7 +46,7 @@ contains
       character(len=:), allocatable :: file
       real(dp) :: size_model, tol
       integer :: i, np0, n0
-      logical :: ok
+      logical :: ok, swapped
 
       n0 = errors%n
       file = m%deck_file
@@ -64,13 +64,17 @@ contains
             np0 = size(pairs)
             tol = s%law%tol
             if (tol <= 0.0_dp) tol = 1.0e-6_dp*size_model
-            if (s%law%rigid > 0 .or. s%law%matching == MATCH_SEGMENT) then
+            swapped = .false.
+            if (s%law%rigid > 0) then
                call projected_pairs(m, s, i, tol, size_model, file, pairs, errors, ok)
+            else if (s%law%matching == MATCH_SEGMENT) then
+               call segment_pairs(m, s, i, tol, size_model, file, pairs, errors, ok, swapped)
             else
                call node_pairs(m, s, i, tol, file, pairs, errors, ok)
             end if
             if (.not. ok) cycle
             m%contact%ifaces(i) = s%law
+            m%contact%ifaces(i)%sides_swapped = swapped
             call define_law(young, nu, pairs(np0 + 1:), m%contact%ifaces(i))
          end associate
       end do
@@ -79,6 +83,54 @@ contains
       m%contact%pairs = pairs
       m%contact%active = size(pairs) > 0
    end subroutine define_contact
+
+   !> MATCHING SEGMENT pairs of interface iface: the nodes of SURFACE A
+   !! projected on the edges of SURFACE B.  Where that fails only because a
+   !! node of A faces more nodes of B than a pair holds (A is the coarser
+   !! side), the other way round: the nodes of B on the edges of A, and
+   !! `swapped` says so (the listing reports it).  If neither works, the
+   !! errors of the deck's own direction are reported.
+   subroutine segment_pairs(m, s, iface, tol, size_model, file, pairs, errors, ok, swapped)
+      type(model_t), intent(in) :: m
+      type(iface_spec_t), intent(in) :: s               !! the interface as the deck gives it
+      integer, intent(in) :: iface                      !! its number
+      real(dp), intent(in) :: tol, size_model           !! pairing tolerance, model size [length]
+      character(len=*), intent(in) :: file
+      type(contact_pair_t), allocatable, intent(inout) :: pairs(:)
+      type(error_list_t), intent(inout) :: errors
+      logical, intent(out) :: ok
+      logical, intent(out) :: swapped                   !! the pairs were built from B's nodes
+      type(error_list_t) :: direct, other
+      type(iface_spec_t) :: t
+      integer :: np0, k
+      logical :: coarse_only
+
+      swapped = .false.
+      np0 = size(pairs)
+      call projected_pairs(m, s, iface, tol, size_model, file, pairs, direct, ok)
+      ok = ok .and. direct%n == 0      ! a rejected node is reported, not counted as unmatched
+      if (ok) return
+      coarse_only = direct%n > 0
+      do k = 1, direct%n
+         if (direct%items(k)%code /= E_COARSE_SIDE) coarse_only = .false.
+      end do
+      if (coarse_only) then
+         pairs = pairs(1:np0)
+         t = s
+         t%surf(1) = s%surf(2)
+         t%surf(2) = s%surf(1)
+         call projected_pairs(m, t, iface, tol, size_model, file, pairs, other, ok)
+         swapped = ok .and. other%n == 0
+         if (swapped) return
+         pairs = pairs(1:np0)
+      end if
+      ok = .false.
+      do k = 1, direct%n
+         associate (e => direct%items(k))
+            call errors%add(e%code, e%message, file=e%file, line=e%line, col=e%col, card=e%card)
+         end associate
+      end do
+   end subroutine segment_pairs
 
    !> Checks of the rigid bodies: the reference node belongs to no element,
    !! a polyline has two or more distinct vertices.

@@ -1,7 +1,9 @@
 !> The contact quantities of a step as output fields: per pair the contact
 !! stresses p = F/A (zero-area pairs extrapolated from their neighbours), the
 !! forces, closures, slips, friction and stiffnesses of the committed states,
-!! and the state codes NS_* / TS_* of the contact fields record.
+!! the state codes NS_* / TS_* of the contact fields record, and the mode
+!! changes of every pair in the step (chatter shows as a pair reaching the
+!! cap of the contact algorithm).
 !!
 !! Filled once per accepted step from the committed states; read as they are
 !! by the result file and the listing, which know nothing of the contact
@@ -57,6 +59,7 @@ contains
       cf%friction = st%s%mu
       cf%stiffness_normal = st%s%kn
       cf%stiffness_tangential = st%s%kt
+      cf%switches = st%md%nswitch
    end subroutine build_contact_fields
 
    !> Every field of the record with np entries (kept when already so).
@@ -69,7 +72,8 @@ contains
       end if
       allocate (cf%pressure(np), cf%shear(np), cf%force_normal(np), cf%force_tangential(np), cf%closure(np), &
                 cf%slip(np), cf%slip_irreversible(np), cf%slip_gross(np), cf%effective_slip(np), cf%friction(np), &
-                cf%normal_state(np), cf%tangential_state(np), cf%stiffness_normal(np), cf%stiffness_tangential(np))
+                cf%normal_state(np), cf%tangential_state(np), cf%stiffness_normal(np), cf%stiffness_tangential(np), &
+                cf%switches(np))
    end subroutine allocate_fields
 
    !> Pairs of zero area (a quadratic axisymmetric edge on the axis) carry no

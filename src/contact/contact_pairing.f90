@@ -67,6 +67,9 @@ module contact_pairing
    ! outcome of pairing one node by projection
    integer, parameter :: NODE_PAIRED = 0     !! the pair is built
    integer, parameter :: NODE_UNMATCHED = 1  !! the node faces nothing within the tolerance
+   !> Code of the error "a node of A faces more nodes of B than a pair holds":
+   !! the one a MATCHING SEGMENT interface cures by swapping its sides.
+   character(len=*), parameter, public :: E_COARSE_SIDE = 'E-SEGMENT-SIDE'
    integer, parameter :: NODE_REJECTED = 2   !! the node cannot be paired (error reported)
 
 contains
@@ -496,7 +499,7 @@ contains
       integer, allocatable :: ie_a(:), ik_a(:), nodes_a(:), nodes_b(:), pair_b(:)
       character(len=:), allocatable :: msg, list
       type(contact_pair_t) :: p
-      integer :: k, nbad
+      integer :: k, nbad, np0
 
       ok = .false.
       call surface_edges(m, s%surf(1), ie_a, ik_a, msg)
@@ -531,6 +534,7 @@ contains
                          'node for node use MATCHING SEGMENT', file=file, line=s%surf(1)%line)
          return
       end if
+      np0 = size(pairs)
       do k = 1, size(nodes_a)
          p = new_pair(m%coord, iface, nodes_a(k), pair_b(k), s%surf(1)%line)
          p%n = normal(:, p%node_b)
@@ -538,7 +542,8 @@ contains
          p%g0 = dot_product(m%coord(:, p%node_a) - m%coord(:, p%node_b), p%n)
          pairs = [pairs, p]
       end do
-      ok = .true.
+      ! the surfaces must be the faces of the two bodies that look at each other
+      ok = facing(m, s, iface, ie_a, ik_a, pairs(np0 + 1:), file, errors)
    end subroutine matched_pairs
 
    !> Areas and element sizes of the node-to-node pairs pairs(np0+1:): lumped
@@ -737,7 +742,7 @@ contains
       call tributary_weights(m, ie_a, ik_a, ie_b, ik_b, area_a, p%node_a, nrm, tol, size_model, nm, mnodes, mw, &
                              gavg, status)
       if (status == TRIB_FULL) then
-         call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(p%iface)//': node '//itoa(p%node_a)// &
+         call errors%add(E_COARSE_SIDE, 'CONTACT: interface '//itoa(p%iface)//': node '//itoa(p%node_a)// &
                          ' of surface A faces more than '//itoa(MAX_PAIR_NODES - 1)//' nodes of surface B; with '// &
                          'MATCHING SEGMENT surface A should be the finer of the two', file=file, line=p%line)
          outcome = NODE_REJECTED
@@ -756,7 +761,8 @@ contains
    end subroutine segment_pair
 
    !> Side B must face surface A: the outward normals of B at the pairs and
-   !! of A at their nodes point against each other.  False (an error
+   !! of A at their nodes point against each other (for every kind of pair:
+   !! node to node, to the edges of B, to a rigid profile).  False (an error
    !! reported) where they do not.
    logical function facing(m, s, iface, ie_a, ik_a, pairs, file, errors)
       type(model_t), intent(in) :: m
@@ -789,7 +795,8 @@ contains
       else
          call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(iface)//': '//itoa(nbad)//' node(s) of '// &
                          'surface A face the back of surface B (both outward normals point the same way):'// &
-                         list, file=file, line=s%surf(1)%line)
+                         list//'; a SURFACE is on the wrong face of its body: A and B must be the faces of the '// &
+                         'two bodies that look at each other', file=file, line=s%surf(1)%line)
       end if
    end function facing
 

@@ -17,6 +17,7 @@ module errors
    public :: STAT_OK, STAT_SINGULAR, STAT_NEGATIVE_PIVOT, STAT_JACOBIAN, &
              STAT_NO_CONVERGENCE, STAT_CHATTER, STAT_SOLVER, STAT_IO, STAT_INPUT, &
              EXIT_OK, EXIT_INTERNAL, EXIT_INPUT, EXIT_NUMERICAL
+   public :: STAT_NONFINITE, EXIT_DOUBTFUL
 
    !> Status codes for recoverable conditions (kind 2).
    integer, parameter :: STAT_OK = 0
@@ -28,12 +29,14 @@ module errors
    integer, parameter :: STAT_SOLVER = 6          !! other linear-solver failure
    integer, parameter :: STAT_IO = 7              !! result-file failure
    integer, parameter :: STAT_INPUT = 8           !! input rejected
+   integer, parameter :: STAT_NONFINITE = 9       !! a NaN or Inf in a solution, force or stress
 
    !> Process exit codes.
    integer, parameter :: EXIT_OK = 0
    integer, parameter :: EXIT_INTERNAL = 1
    integer, parameter :: EXIT_INPUT = 2
    integer, parameter :: EXIT_NUMERICAL = 3
+   integer, parameter :: EXIT_DOUBTFUL = 4        !! completed with doubts (frozen states, drift, invariants)
 
    !> One input error, located in a file.
    type :: input_error_t

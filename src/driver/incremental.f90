@@ -24,15 +24,20 @@
 !! layer the contact fields; the result file and the listing write them.
 !!
 !! A numerical failure stops the loop cleanly: every finished increment stays
-!! in the result file, whose status attribute says what happened.  The model
-!! is read only: what the run used is reported in the run information.
+!! in the result file, whose status attribute says what happened (a failure
+!! at set-up, before the first increment, leaves the mesh and that status);
+!! a non-finite number in a solution is such a failure.  A run whose steps
+!! raise doubts (step_audit: frozen states, law drift, invariant violations)
+!! ends "doubtful", naming them.  The model is read only: what the run used is
+!! reported in the run information.
 module incremental
    use kinds, only: dp, i8, stdout, stderr
    use errors, only: status_t, STAT_SINGULAR, STAT_INPUT, STAT_NO_CONVERGENCE
    use strings, only: itoa, rtoa, strip_extension, basename
    use model, only: model_t, NTYPE_AXISYMMETRIC, complete_model, model_complete
    use dof_map, only: dof_map_t
-   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, STEP_CONVERGED, STEP_UNSETTLED
+   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, STEP_CONVERGED, &
+                      STEP_UNSETTLED
    use equation_numbering, only: numbering_report_t, number_equations, write_numbering_report
    use linear_solver, only: linear_solver_t
    use solver_factory, only: create_solver
@@ -40,17 +45,20 @@ module incremental
    use contact_system_factory, only: create_contact_system
    use assembly, only: coupling_t, assemble_bodies, assemble_load_cases, load_increment
    use contact_assembly, only: contact_springs_t, pair_links, spring_nodal_forces
-   use body_fields, only: recover_stresses, update_reactions, number_bodies, body_imbalance
+   use body_fields, only: recover_stresses, update_reactions, number_bodies, body_imbalance, &
+                          stiffness_range, zero_fields
    use contact_types, only: UPDATE_RETURN
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, commit_increment, &
-                                law_drift, check_invariants, augment_multipliers
+                                law_drift, augment_multipliers, MAX_SWITCH
+   use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
+                         sliding_warning, check_finite_springs
    use contact_start, only: init_contact_states, start_pressure
    use increment_attempt, only: attempt_t, attempt_failure
    use contact_fields, only: build_contact_fields, pair_spacing
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, list_progress, &
-                      list_completed, list_failed, list_drift_note, list_sliding_warning, list_chatter_warning
+                      list_completed, list_failed, list_doubts
    implicit none
    private
    public :: run_options_t, run_result_t, run_analysis
@@ -82,7 +90,8 @@ module incremental
       integer, allocatable :: augmentations(:)   !! ideal contact: multiplier updates per increment
       character(len=:), allocatable :: results_path
       logical :: reported = .false.              !! a failure was already printed
-      integer :: warnings = 0                    !! warnings printed about the method (closure, chatter)
+      integer :: warnings = 0                    !! warnings printed about the method (sliding)
+      type(run_doubts_t) :: doubts               !! doubtful steps: the run ends doubtful (exit code 4)
    end type run_result_t
 
    !> Everything the increment loop works with.
@@ -103,11 +112,10 @@ module incremental
       logical :: modified = .false.                !! modified Newton: stiffness kept within an increment
       logical :: system_current = .false.          !! the system holds the springs of the current modes
       real(dp), allocatable :: spacing(:)          !! (npair) distance to the nearest other pair
-      integer, allocatable :: body(:)              !! (npoin) body of each node (equilibrium check)
+      integer, allocatable :: body(:, :)           !! (2, npoin) body of each node, x and y (equilibrium check)
       integer :: nbody = 0
       real(dp) :: force_scale = tiny(1.0_dp)       !! largest nodal force seen so far
       logical :: warned_closure = .false.
-      logical :: warned_chatter = .false.
    end type analysis_t
 
    !> Where a run reports: the result file, the listing, the terminal.
@@ -118,6 +126,7 @@ module incremental
       character(len=:), allocatable :: lis_level   !! FULL, SHORT or NONE
       character(len=:), allocatable :: lis_path
       logical :: quiet = .false.
+      logical :: set_up_failed = .false.           !! the run stopped before its first increment
       integer(i8) :: t0 = 0, rate = 1              !! clock at the start of the run
    end type outputs_t
 
@@ -149,6 +158,7 @@ contains
       type(analysis_t) :: an
       type(outputs_t) :: out
       type(numbering_report_t) :: numbering
+      type(status_t) :: ostat
       character(len=:), allocatable :: solver_name
 
       call system_clock(out%t0, out%rate)
@@ -169,10 +179,22 @@ contains
 
       call set_up(m, solver_name, an, numbering, status)
       if (status%ok()) call start_run(m, an, res, status)
-      if (status%ok()) call open_outputs(m, numbering, res, out, status)
       if (status%ok()) then
-         call solve_history(m, an, res, out, status)
-         call close_outputs(m, an, res, out, status)
+         call open_outputs(m, numbering, res, out, status)
+         if (status%ok()) then
+            call solve_history(m, an, res, out, status)
+            call close_outputs(m, res, out, status)
+         end if
+      else if (status%code /= STAT_INPUT) then
+         ! a numerical failure before the first increment: the result file
+         ! keeps the mesh and says why (the listing and terminal too)
+         out%set_up_failed = .true.
+         if (.not. allocated(numbering%method)) numbering = numbering_report_t(method='NONE', reason='not reached')
+         if (.not. allocated(res%info%solver)) res%info = run_info_t(solver=solver_name, system='', &
+                                       npair=an%npair, returning=an%returning, modified=an%modified)
+         call zero_fields(m, res%body_fields_t)
+         call open_outputs(m, numbering, res, out, ostat)
+         if (ostat%ok()) call close_outputs(m, res, out, status)
       end if
       if (allocated(an%sys)) call an%sys%free()
       if (allocated(an%solver)) call an%solver%free()
@@ -232,11 +254,9 @@ contains
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: kref(:, :, :)
 
-      allocate (res%disp(2, m%npoin), res%react(2, m%npoin))
+      call zero_fields(m, res%body_fields_t)
       allocate (res%iterations(0), res%repeats(0), res%residual(0), res%drift(0), res%imbalance(0), &
                 res%violations(0), res%penetration(0), res%augmentations(0))
-      res%disp = 0.0_dp
-      res%react = 0.0_dp
       call init_contact_states(m, res%contact)
       ! the cap on solutions per increment: CONTACT REPEATS, or 30 for the rough
       ! springs and 100 when the augmented Lagrangian of an ideal interface has
@@ -248,9 +268,14 @@ contains
          call start_pressure(m, an%fcase, m%lambda(:, 1) - m%lambda(:, 0), res%contact, status)
          if (.not. status%ok()) return
       end if
+      ! K_AB out of the range of double precision (an overflowing modulus) is
+      ! named, not called singular
+      call stiffness_range(an%map, an%diag, status)
+      if (.not. status%ok()) return
       ! the contact system takes the solver (K_AB) over
       call an%springs%reference_springs(m%contact%pairs, an%diag, kref)
       call an%sys%setup(an%solver, an%map, an%springs%peq, kref, status)
+      if (.not. status%ok()) call stiffness_range(an%map, an%diag, status)
       if (.not. status%ok()) return
       deallocate (an%diag)
       ! stress recovery layout (Gauss points are fixed)
@@ -261,7 +286,8 @@ contains
       res%info = run_info_t(solver=an%sys%solver%name(), system=an%sys%describe(), returning=an%returning, &
                             modified=an%modified, neq=an%map%neq, nres=an%map%nres, npair=an%npair, &
                             condensed=an%sys%condensed, system_bytes=an%sys%memory_bytes(), max_repeats=an%maxrep, &
-                            autoinc=m%autoinc, autoinc_min=m%autoinc_min, autoinc_easy=m%autoinc_easy)
+                            autoinc=m%autoinc, autoinc_min=m%autoinc_min, autoinc_easy=m%autoinc_easy, &
+                            max_switch=MAX_SWITCH)
    end subroutine start_run
 
    !> The listing, then the result file (nothing is left behind if either
@@ -346,6 +372,7 @@ contains
                if (.not. status%ok()) exit deck
             end if
             call attempt_increment(an, m, res%contact, dlam, carry, fext_new, first, att, status)
+            call check_finite_attempt(att%du, res%contact, an%has_contact, status)
             if (.not. m%autoinc) then
                if (.not. status%ok()) exit deck
                call failed_convergence(m, an, att, res%contact, nstep + 1, status)
@@ -387,7 +414,7 @@ contains
                                  status=merge(STEP_CONVERGED, STEP_UNSETTLED, att%converged), contact=an%has_contact, &
                                  ideal=res%contact%has_ideal, last=inc == m%nincs .and. frac >= 1.0_dp - 1.0e-12_dp)
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
-            if (an%has_contact) call method_warnings(an, res, nstep)
+            if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
             ! OPTIONS RESULTS n: only every n-th step and the last go into the result file
             srec%written = srec%last .or. mod(nstep, m%results_every) == 0
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
@@ -533,6 +560,8 @@ contains
       type(model_t), intent(in) :: m
       type(contact_state_t), intent(in) :: st
       type(status_t), intent(inout) :: status
+      call check_finite_springs(st, status)
+      if (.not. status%ok()) return
       call an%springs%set_matrices(m%contact, st)
       call an%sys%set_springs(an%springs%kstore, status)
       an%system_current = status%ok()
@@ -571,33 +600,6 @@ contains
                                                an%maxrep, inc, status)
    end subroutine failed_convergence
 
-   !> Warning when the method is used outside its comfort zone (once per
-   !! run): a tangential relative displacement above 10 % of the pair spacing
-   !! (node-to-node pairs assume small sliding: the partners must stay
-   !! opposite each other; very soft roughness or a large tangential load
-   !! breaks that).
-   subroutine method_warnings(an, res, nstep)
-      type(analysis_t), intent(inout) :: an
-      type(run_result_t), intent(inout) :: res
-      integer, intent(in) :: nstep
-      integer :: j
-      if (.not. an%warned_closure) then
-         do j = 1, an%npair
-            if (abs(res%contact%s(j)%ut) > 0.1_dp*an%spacing(j)) then
-               an%warned_closure = .true.
-               res%warnings = res%warnings + 1
-               call list_sliding_warning(stderr, nstep, j, abs(res%contact%s(j)%ut), an%spacing(j))
-               exit
-            end if
-         end do
-      end if
-      if (.not. an%warned_chatter .and. res%contact%chatter) then
-         an%warned_chatter = .true.
-         res%warnings = res%warnings + 1
-         call list_chatter_warning(stderr, nstep, 6)
-      end if
-   end subroutine method_warnings
-
    !> Fields, checks, output and progress of an accepted step.
    subroutine finish_step(m, an, res, out, fext, ve_old, srec, status)
       type(model_t), intent(in) :: m
@@ -609,30 +611,22 @@ contains
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: fsp(:, :)
       real(dp) :: imb
-      integer :: nbad
       integer(i8) :: t1
-      character(len=:), allocatable :: imsg
 
       call recover_stresses(m, res%body_fields_t, status)
       if (.not. status%ok()) return
       call spring_nodal_forces(m%contact, res%contact, m%npoin, fsp)
       call update_reactions(an%coup, an%map, fext, fsp, res%body_fields_t)
+      call check_finite_step(res%body_fields_t, res%contact, an%has_contact, srec%drift, status)
+      if (.not. status%ok()) return
 
       ! invariants (SPEC §7): every body in equilibrium under loads, reactions
-      ! and spring forces; no tension; |F_T| <= mu F_n; v_e non-decreasing
+      ! and spring forces; no tension; |F_T| <= mu F_n; v_e non-decreasing;
+      ! frozen states and law drift: a doubtful step, named where it happens
       an%force_scale = max(an%force_scale, maxval(abs(fext)), maxval(abs(res%react)), maxval(abs(fsp)))
       imb = body_imbalance(an%body, an%nbody, fext + res%react - fsp, an%force_scale, m%ntype == NTYPE_AXISYMMETRIC)
-      nbad = 0
-      imsg = ''
-      if (an%has_contact) call check_invariants(res%contact, ve_old, nbad, imsg)
-      if (imb > 1.0e-8_dp) then
-         nbad = nbad + 1
-         imsg = 'a body is out of equilibrium by '//rtoa(imb)//' of the load'
-      end if
-      if (nbad > 0) write (stderr, '(a)') 'kontakt2d: warning: increment '//itoa(srec%step)//': '//itoa(nbad)// &
-         ' invariant violation(s): '//imsg
-      srec%imbalance = imb
-      srec%violations = nbad
+      call audit_step(m%contact, res%contact, ve_old, imb, an%has_contact, srec)
+      call note_doubts(res%doubts, srec, stderr)
       ! the history of the run
       res%iterations = [res%iterations, srec%solutions]
       res%repeats = [res%repeats, srec%repeats]
@@ -641,7 +635,7 @@ contains
       res%penetration = [res%penetration, srec%penetration]
       res%augmentations = [res%augmentations, srec%augmentations]
       res%imbalance = [res%imbalance, imb]
-      res%violations = [res%violations, nbad]
+      res%violations = [res%violations, srec%violations]
       if (an%has_contact) call build_contact_fields(m%contact, res%contact, res%fields)
 
       if (srec%written) then
@@ -660,20 +654,29 @@ contains
 
    !> The end of the run: the result file's status, the closing messages,
    !! files closed.
-   subroutine close_outputs(m, an, res, out, status)
+   subroutine close_outputs(m, res, out, status)
       type(model_t), intent(in) :: m
-      type(analysis_t), intent(in) :: an
       type(run_result_t), intent(inout) :: res
       type(outputs_t), intent(inout) :: out
       type(status_t), intent(in) :: status
-      if (status%ok()) then
+      if (status%ok() .and. res%doubts%steps > 0) then
+         ! completed, but not to be trusted without a look: exit code 4
+         call out%rf%set_status('doubtful: '//doubt_summary(res%doubts, res%completed))
+         call list_doubts(stderr, res%doubts, doubt_summary(res%doubts, res%completed), res%results_path)
+         if (out%have_lis) call list_doubts(out%lu, res%doubts, doubt_summary(res%doubts, res%completed), '')
+      else if (status%ok()) then
          call out%rf%set_status('completed')
          if (.not. out%quiet) call list_completed(stdout, res%completed, res%results_path)
-         if (an%has_contact .and. .not. an%returning .and. .not. out%quiet) call list_drift_note(stderr, res%drift)
+      else if (out%set_up_failed) then
+         call out%rf%set_status('failed at set-up: '//status%message)
+         res%reported = .true.
+         call list_failed(stderr, -1, status%message, res%results_path, 1)
+         if (out%have_lis) call list_failed(out%lu, -1, status%message, res%results_path, 1)
       else
          call out%rf%set_status('failed at increment '//itoa(res%completed + 1)//': '//status%message)
          res%reported = .true.
          call list_failed(stderr, res%completed, status%message, res%results_path, m%results_every)
+         if (out%have_lis) call list_failed(out%lu, res%completed, status%message, res%results_path, m%results_every)
       end if
       call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, res%contact%s%ua, &
                             res%contact%s%pa, out%have_lis, out%lu, out%quiet, out%t0, out%rate)

@@ -14,14 +14,14 @@ module listing
    use strings, only: itoa, rtoa
    use version, only: K2D_VERSION
    use model, only: model_t, ntype_name
-   use contact_types, only: contact_def_t
-   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, NS_OPEN, NS_UNLOADING, &
-                      TS_STICK, TS_PLASTIC, TS_SLIP
+   use contact_types, only: contact_def_t, units_name, LAW_ROUGH, UNITS_KGF_UM, UNITS_MODEL, MATCH_SEGMENT
+   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, NS_OPEN, &
+                      NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP, MAX_DOUBT_LINES
    implicit none
    private
    public :: list_header, list_method, list_input, list_step, list_displacements, list_stresses, &
              principal_stresses, list_contact, list_progress_header, list_progress
-   public :: list_completed, list_failed, list_drift_note, list_sliding_warning, list_chatter_warning
+   public :: list_completed, list_failed, list_sliding_warning, list_doubts, list_interfaces
 
 contains
 
@@ -42,7 +42,42 @@ contains
          '   load cases: ', m%ncase
       write (u, '(a,i0)') ' Increments   : ', m%nincs
       write (u, '(a)') ' Solver       : '//info%solver
+      call list_interfaces(u, m%contact)
    end subroutine list_header
+
+   !> The contact interfaces: the unit convention of the roughness constants
+   !! (KGF_UM unless a UNITS card says otherwise) with the constants as given
+   !! and converted to model units, and how the pairs were built.
+   !! Ref: SPEC §2.4 (u[mm] = 1e-3 c_n (f p)^m, f = 10.19716 kgf/cm² per N/mm²).
+   subroutine list_interfaces(u, c)
+      integer, intent(in) :: u
+      type(contact_def_t), intent(in) :: c
+      integer :: i
+      character(len=:), allocatable :: line
+      if (.not. allocated(c%ifaces)) return
+      do i = 1, size(c%ifaces)
+         associate (f => c%ifaces(i))
+            if (f%matching == MATCH_SEGMENT .and. f%sides_swapped) write (u, '(a)') ' Interface '//itoa(i)// &
+               ': MATCHING SEGMENT with the sides swapped: the nodes of SURFACE B are projected on the edges '// &
+               'of SURFACE A (the deck''s A is the coarser side)'
+            if (f%law /= LAW_ROUGH) cycle
+            line = ' Interface '//itoa(i)//': UNITS '//units_name(f%units)
+            if (f%units /= UNITS_MODEL) line = line//', model in mm and N/mm2'
+            write (u, '(a)') line
+            line = '   as given   : CN '//rtoa(f%cn_in)//'  M '//rtoa(f%m_in)//'  CN2 '//rtoa(f%cn2_in)// &
+                   '  M2 '//rtoa(f%m2_in)//'  S '//rtoa(f%s_in)
+            if (f%r_given) line = line//'  R '//rtoa(f%r_in)
+            write (u, '(a)') line
+            if (.not. allocated(f%r_t)) cycle
+            if (size(f%r_t) == 0) cycle
+            line = '   model units: CN '//rtoa(f%cn)//'  CN2 '//rtoa(f%cn2)//'  R '//rtoa(minval(f%r_t))
+            if (maxval(f%r_t) > minval(f%r_t)) line = line//' .. '//rtoa(maxval(f%r_t))
+            line = line//'  (u = CN p^M, length and stress of the model'
+            if (f%units == UNITS_KGF_UM) line = line//'; 1 N/mm2 = 10.19716 kgf/cm2'
+            write (u, '(a)') line//')'
+         end associate
+      end do
+   end subroutine list_interfaces
 
    !> The method in use: contact scheme, contact system, automatic increments.
    subroutine list_method(u, info)
@@ -141,6 +176,9 @@ contains
       integer :: ip
       write (u, '(/a)') repeat('-', 78)
       write (u, '(a,i0,a,6f11.5)') ' INCREMENT ', step%step, '   load factor(s):', step%lambda
+      if (allocated(step%doubts)) then
+         if (len(step%doubts) > 0) write (u, '(a)') ' DOUBTFUL: '//step%doubts
+      end if
       write (u, '(a)') repeat('-', 78)
       write (u, '(/a)') ' DISPLACEMENTS'
       write (u, '(a)') '   NODE          X-DISP          Y-DISP'
@@ -262,13 +300,19 @@ contains
       write (u, '(a)') ' Completed '//itoa(completed)//' increment(s); results in '//results_path
    end subroutine list_completed
 
-   !> Where a failed run stopped and what its result file keeps (error unit).
+   !> Where a failed run stopped and what its result file keeps (error unit,
+   !! or the listing).
    subroutine list_failed(u, completed, message, results_path, results_every)
       integer, intent(in) :: u
-      integer, intent(in) :: completed               !! steps finished before the failure
+      integer, intent(in) :: completed               !! steps finished before the failure (-1: at set-up)
       character(len=*), intent(in) :: message        !! why
       character(len=*), intent(in) :: results_path
       integer, intent(in) :: results_every           !! OPTIONS RESULTS
+      if (completed < 0) then
+         write (u, '(a)') 'kontakt2d: the set-up failed before the first increment: '//message
+         write (u, '(a)') 'kontakt2d: '//results_path//' keeps the mesh and this status (no increment)'
+         return
+      end if
       write (u, '(a)') 'kontakt2d: increment '//itoa(completed + 1)//' failed: '//message
       if (results_every > 1) then
          write (u, '(a)') 'kontakt2d: '//itoa(completed)//' increment(s) completed; '// &
@@ -278,18 +322,6 @@ contains
          write (u, '(a)') 'kontakt2d: '//itoa(completed)//' completed increment(s) are kept in '//results_path
       end if
    end subroutine list_failed
-
-   !> The drift of the paper's explicit scheme (SPEC §4.2), so that it is never
-   !! silent: a note when normal spring forces left their law by over 5 %.
-   subroutine list_drift_note(u, drift)
-      integer, intent(in) :: u
-      real(dp), intent(in) :: drift(:)               !! law drift of every step
-      if (size(drift) == 0) return
-      if (maxval(drift) > 0.05_dp) write (u, '(a)') 'kontakt2d: note: the incremental scheme '// &
-         'left normal spring forces up to '//rtoa(100.0_dp*maxval(drift), '(f6.1)')//' % (increment '// &
-         itoa(maxloc(drift, 1))//') off the interface law (attribute law_drift); more increments '// &
-         'reduce this, CONTACT SCHEME NEWTON removes it'
-   end subroutine list_drift_note
 
    !> Warning: a pair slid more than 10 % of the pair spacing.
    subroutine list_sliding_warning(u, step, pair, slip, spacing)
@@ -301,13 +333,36 @@ contains
          'must stay opposite each other); refine the contact mesh or use stiffer roughness data'
    end subroutine list_sliding_warning
 
-   !> Warning: the springs' states were frozen after max_switch changes.
-   subroutine list_chatter_warning(u, step, max_switch)
-      integer, intent(in) :: u, step, max_switch
-      write (u, '(a)') 'kontakt2d: warning: increment '//itoa(step)//': contact springs kept switching '// &
-         'their states (chatter); their states were frozen after '//itoa(max_switch)//' changes and the increment '// &
-         'accepted; use smaller increments or OPTIONS AUTOINC'
-   end subroutine list_chatter_warning
+   !> The end of a run that completed with doubts (exit code 4): the summary
+   !! and where the results are (the terminal, which had a warning at every
+   !! doubtful increment), or the summary and the doubtful increments with the
+   !! pairs concerned (the listing: results_path = '').
+   subroutine list_doubts(u, doubts, summary, results_path)
+      integer, intent(in) :: u
+      type(run_doubts_t), intent(in) :: doubts
+      character(len=*), intent(in) :: summary        !! one line: how many of each kind
+      character(len=*), intent(in) :: results_path   !! '' in the listing
+      integer :: k, k0
+      write (u, '(a)') repeat('-', 78)
+      write (u, '(a)') 'kontakt2d: completed with doubts: '//summary
+      if (len(results_path) > 0) then
+         write (u, '(a)') 'kontakt2d: results (status "doubtful") in '//results_path//'; the increments and '// &
+            'pairs concerned are named above and in the listing'
+         return
+      end if
+      k0 = 1
+      do k = 1, len(doubts%details) + 1
+         if (k <= len(doubts%details)) then
+            if (doubts%details(k:k) /= new_line('a')) cycle
+         end if
+         write (u, '(a)') '  '//doubts%details(k0:k - 1)
+         k0 = k + 1
+      end do
+      if (doubts%steps > MAX_DOUBT_LINES) write (u, '(a)') '  ... and '//itoa(doubts%steps - MAX_DOUBT_LINES)// &
+         ' more doubtful increment(s)'
+      write (u, '(a)') '  (frozen states, law drift and invariant violations: docs/accuracy-and-stability.md; '// &
+         'smaller increments, SCHEME NEWTON or OPTIONS AUTOINC remove most)'
+   end subroutine list_doubts
 
    !> In-plane principal stresses and the angle (degrees) of the first from x.
    pure subroutine principal_stresses(sig, s1, s2, angle)

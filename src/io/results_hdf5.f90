@@ -32,7 +32,7 @@
 !!     do accepted step
 !!        call rf%write_increment(step, body, status, contact)   ! one group, flushed
 !!     end do
-!!     call rf%set_status(text)                       ! completed / failed at ...
+!!     call rf%set_status(text)                       ! completed / doubtful: ... / failed at ...
 !!     call rf%close()
 !!
 !! The file is flushed after every increment, so a run that stops early
@@ -189,6 +189,9 @@ contains
       if (step%ideal) call attr_int(gid, 'augmentations', step%augmentations, err)
       call attr_real0(gid, 'imbalance', step%imbalance, err)
       call attr_int(gid, 'invariant_violations', step%violations, err)
+      if (allocated(step%doubts)) then
+         if (len(step%doubts) > 0) call attr_string(gid, 'doubts', step%doubts, err)
+      end if
       call attr_int(gid, 'deck_increment', step%deck_increment, err)
       call attr_real0(gid, 'deck_increment_fraction', step%fraction, err)
       call attr_int(gid, 'cuts', step%cuts, err)
@@ -417,6 +420,7 @@ contains
       call write_real2(gid, 'master_weights', wm, err)
       call attr_string(gid, 'update', update_name(c%opts%update), err)
       call attr_int(gid, 'max_repeats', info%max_repeats, err)
+      call attr_int(gid, 'max_switch', info%max_switch, err)
       call attr_real1(gid, 'augmented', [c%opts%aug_factor, c%opts%aug_tol], err)
       do i = 1, size(c%ifaces)
          write (name, '(a,i0)') 'interface_', i
@@ -425,6 +429,7 @@ contains
          associate (f => c%ifaces(i))
             call attr_string(iid, 'law', law_name(f%law), err)
             call attr_string(iid, 'matching', matching_name(f%matching, f%rigid), err)
+            call attr_int(iid, 'sides_swapped', merge(1, 0, f%sides_swapped), err)
             if (f%rigid > 0) then
                associate (rb => c%rigids(f%rigid))
                   call attr_string(iid, 'rigid_shape', rigid_shape_name(rb%shape), err)
@@ -480,6 +485,7 @@ contains
       call write_int1(cid, 'tangential_state', cf%tangential_state, err)
       call write_real1(cid, 'stiffness_normal', cf%stiffness_normal, err)
       call write_real1(cid, 'stiffness_tangential', cf%stiffness_tangential, err)
+      if (allocated(cf%switches)) call write_int1(cid, 'switches', cf%switches, err)
       call h5gclose_f(cid, e)
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the contact results')
    end subroutine write_contact_fields

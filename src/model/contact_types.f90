@@ -86,6 +86,7 @@ module contact_types
       ! pairing
       real(dp) :: tol = -1.0_dp        !! pairing tolerance (< 0: default from the mesh size)
       integer :: matching = MATCH_NODE !! node-to-node or node-to-segment (surface B only)
+      logical :: sides_swapped = .false. !! MATCHING SEGMENT built from B's nodes on A's edges (A the coarser)
       integer :: rigid = 0             !! index of the rigid body that is side B (0: a surface)
       integer :: line = 0              !! deck line of the INTERFACE (or first) card
    end type interface_t

@@ -17,12 +17,17 @@
 !!     body_fields_t     Gauss-point layout once, then every accepted step
 !!     contact_fields_t  every accepted step (contact models)
 !!     step_record_t     every accepted step
+!!     run_doubts_t      every accepted step that is doubtful (frozen contact
+!!                       states, law drift beyond DRIFT_LIMIT, invariant
+!!                       violations): a run with one ends "doubtful", not
+!!                       "completed"
 module records
    use kinds, only: dp, i8
    implicit none
    private
 
-   public :: step_record_t, body_fields_t, contact_fields_t, run_info_t
+   public :: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t
+   public :: DRIFT_LIMIT, MAX_DOUBT_LINES
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: STEP_CONVERGED, STEP_UNSETTLED
 
@@ -40,6 +45,13 @@ module records
    integer, parameter :: STEP_UNSETTLED = 1  !! an EXPLICIT increment accepted with its slip forces
                                              !! unsettled (its out-of-balance force is carried on)
 
+   !> Law drift (|F_n - A p(u_n)| / max F_n at the end of a step) beyond which a
+   !! step is doubtful: 5 %, the accuracy the paper's explicit scheme is used
+   !! for (docs/accuracy-and-stability.md); a converged Newton step has none.
+   real(dp), parameter :: DRIFT_LIMIT = 0.05_dp
+   !> Lines of detail a run keeps about its doubtful steps (the first ones).
+   integer, parameter :: MAX_DOUBT_LINES = 20
+
    !> Figures of one accepted step (one group of the result file).
    type :: step_record_t
       integer :: step = 0                    !! number of the accepted step (the result group)
@@ -53,14 +65,17 @@ module records
       real(dp) :: drift = 0.0_dp             !! largest departure of F_n from its curve, relative (contact)
       real(dp) :: imbalance = 0.0_dp         !! largest force imbalance of a body, relative
       integer :: violations = 0              !! invariant violations (SPEC §7)
+      integer :: frozen = 0                  !! pairs whose modes were frozen (chatter)
       real(dp) :: penetration = 0.0_dp       !! ideal contact: largest |u_n| (closed) or stick slip
       integer :: augmentations = 0           !! ideal contact: multiplier updates
-      logical :: converged = .true.          !! accepted (the attribute `converged` of the group)
+      logical :: converged = .true.          !! met its convergence criterion (not unsettled, no frozen pair)
       integer :: status = STEP_CONVERGED     !! STEP_CONVERGED or STEP_UNSETTLED
       logical :: contact = .false.           !! the model has contact: residual and drift apply
       logical :: ideal = .false.             !! some interface is ideal: penetration, augmentations apply
       logical :: last = .false.              !! the last step of the load history
       logical :: written = .false.           !! goes into the result file (OPTIONS RESULTS)
+      character(len=:), allocatable :: doubts  !! why the step is doubtful ('' if it is not): frozen
+                                               !! states, drift, violations, naming the pairs
    end type step_record_t
 
    !> Nodal and Gauss-point fields of the bodies after a step.
@@ -90,6 +105,7 @@ module records
       integer, allocatable :: tangential_state(:)       !! TS_*
       real(dp), allocatable :: stiffness_normal(:)      !! K_n used
       real(dp), allocatable :: stiffness_tangential(:)  !! K_T used
+      integer, allocatable :: switches(:)               !! mode changes of the pair in the step
    end type contact_fields_t
 
    !> What a run uses, for the header of the listing and the terminal and the
@@ -108,6 +124,19 @@ module records
       logical :: autoinc = .false.                  !! automatic increments
       real(dp) :: autoinc_min = 0.0_dp              !! their smallest step, fraction of a deck increment
       integer :: autoinc_easy = 0                   !! solutions of an easy step
+      integer :: max_switch = 0                     !! mode changes after which a rough pair's modes are frozen
    end type run_info_t
+
+   !> The doubtful steps of a run: how many of each kind, and the first
+   !! MAX_DOUBT_LINES of them in words ("increment 3: ..."), for the
+   !! terminal, the listing and the result file's status.
+   type :: run_doubts_t
+      integer :: steps = 0                          !! doubtful steps
+      integer :: frozen = 0                         !! steps with frozen contact states
+      integer :: drift = 0                          !! steps with law drift beyond DRIFT_LIMIT
+      integer :: violations = 0                     !! steps with invariant violations
+      integer :: first = 0                          !! the first doubtful step
+      character(len=:), allocatable :: details      !! one line per doubtful step (new-line separated)
+   end type run_doubts_t
 
 end module records

@@ -39,10 +39,15 @@ class Run:
         log = os.path.join(args.work, name + ".log")
         fn(deck, **kw)
         self.rc = run_deck(args.exe, deck, h5, log=log)
+        # the paper's explicit scheme drifts off the normal law: such a run completes with
+        # doubts (exit code 4, status "doubtful"); any other run must complete plainly
+        with open(deck) as f:
+            explicit = any(line.split()[:2] in (["UPDATE", "EXPLICIT"], ["SCHEME", "INCREMENTAL"],
+                                                ["SCHEME", "EXPLICIT"]) for line in f)
         if self.rc != 0:
             with open(log) as f:
                 print(f.read())
-        check(self.rc == 0, "%s runs to completion" % name)
+        check(self.rc == 0 or (explicit and self.rc == 4), "%s runs to completion" % name)
         self.result = Result(h5)
         self.pairs = Pairs(self.result)
         self.x = self.pairs.x

@@ -191,7 +191,7 @@ def run_case(exe, out, c, timeout, repeats=REPEATS, keep=False):
             os.remove(stale)
     rc, wall, cpu, rss = run_measured(exe, deck, h5, log, ["-s", c.solver], timeout)
     for _ in range(repeats - 1):
-        if rc != 0 or cpu >= REPEAT_BELOW:
+        if rc not in (0, 4) or cpu >= REPEAT_BELOW:
             break
         rc, wall2, cpu2, rss = run_measured(exe, deck, h5, log, ["-s", c.solver], timeout)
         wall, cpu = min(wall, wall2), min(cpu, cpu2)
@@ -211,7 +211,10 @@ def run_case(exe, out, c, timeout, repeats=REPEATS, keep=False):
         for f in (h5, h5[:-3] + ".xdmf", h5[:-3] + ".lis"):
             if os.path.exists(f):
                 os.remove(f)
-    row["status"] = "ok" if rc == 0 and r.get("status") == "completed" else "failed (exit %d)" % rc
+    # exit code 4: completed with doubts (the paper's explicit scheme drifting off the law);
+    # the study measures the error of such a run like any other
+    done = (rc == 0 and r.get("status") == "completed") or (rc == 4 and str(r.get("status", "")).startswith("doubtful"))
+    row["status"] = "ok" if done else "failed (exit %d)" % rc
     if row["status"] == "ok" and r.get("imbalance", 0.0) > IMBALANCE_LIMIT:
         row["status"] = "unbalanced"
     for key in ("solutions", "steps", "cuts", "law_drift", "imbalance", "violations"):

@@ -1,0 +1,288 @@
+!> The checks that decide whether a run's numbers can be trusted.
+!!
+!! * Finite numbers: a NaN or Inf in a solution, a spring force or a stress
+!!   (an overflowing load factor, modulus or roughness constant) stops the run
+!!   as a numerical failure naming the increment; it is checked once where the
+!!   numbers are formed: after every attempt at an increment (its displacement
+!!   increment and spring forces) and in the fields of an accepted step.
+!! * Doubts: an accepted step is doubtful when contact states were frozen
+!!   after MAX_SWITCH mode changes (chatter), when the normal spring forces
+!!   left their law by more than DRIFT_LIMIT (the paper's explicit scheme), or
+!!   when an invariant of SPEC §7 is violated (body equilibrium to 1e-8, no
+!!   tension, |F_T| <= mu F_n, non-decreasing effective slip).  A run with a
+!!   doubtful step ends "doubtful" (exit code 4), not "completed"; the pairs and
+!!   increments concerned are named on the terminal, in the listing and in the
+!!   result file.
+!!
+!! Ref: SPEC §7 (invariants), §4.2 (drift of the explicit scheme).
+module step_audit
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
+   use kinds, only: dp, stderr
+   use errors, only: status_t, STAT_NONFINITE
+   use strings, only: itoa, rtoa
+   use records, only: step_record_t, body_fields_t, run_doubts_t, DRIFT_LIMIT, MAX_DOUBT_LINES, STEP_CONVERGED
+   use contact_types, only: contact_def_t, LAW_ROUGH
+   use contact_laws, only: normal_pressure
+   use contact_algorithm, only: contact_state_t, check_invariants, frozen_pairs, MAX_SWITCH
+   use listing, only: list_sliding_warning
+   implicit none
+   private
+   public :: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, pair_list
+   public :: sliding_warning, check_finite_springs
+
+contains
+
+   !> Stop (STAT_NONFINITE) if an attempt at an increment produced a
+   !! non-finite displacement increment or spring force.
+   subroutine check_finite_attempt(du, st, has_contact, status)
+      real(dp), intent(in) :: du(:, :)               !! (2, npoin) displacement increment
+      type(contact_state_t), intent(in) :: st        !! current spring forces (contact models)
+      logical, intent(in) :: has_contact
+      type(status_t), intent(inout) :: status
+      if (.not. status%ok()) return
+      call check_nodal(du, 'displacement increment', status)
+      if (.not. status%ok() .or. .not. has_contact) return
+      if (allocated(st%fn)) call check_pairs(st%fn, 'normal spring force', status)
+      if (allocated(st%ft) .and. status%ok()) call check_pairs(st%ft, 'tangential spring force', status)
+   end subroutine check_finite_attempt
+
+   !> Stop (STAT_NONFINITE) if a spring stiffness of the current modes is not
+   !! finite (the law's tangent at an overflowing pressure), before a
+   !! factorization would call the system singular.
+   subroutine check_finite_springs(st, status)
+      type(contact_state_t), intent(in) :: st
+      type(status_t), intent(inout) :: status
+      if (.not. allocated(st%md)) return
+      call check_pairs(st%md%kn, 'normal spring stiffness', status)
+      if (status%ok()) call check_pairs(st%md%kt, 'tangential spring stiffness', status)
+   end subroutine check_finite_springs
+
+   !> Stop (STAT_NONFINITE) if the fields of an accepted step hold a
+   !! non-finite number: displacements, reactions, stresses, the committed
+   !! spring forces and closures, and the law's force at the closures (the
+   !! drift: the law overflows where the closure is finite but huge).
+   subroutine check_finite_step(body, st, has_contact, drift, status)
+      type(body_fields_t), intent(in) :: body
+      type(contact_state_t), intent(in) :: st
+      logical, intent(in) :: has_contact
+      real(dp), intent(in) :: drift                 !! the step's law drift (law_drift)
+      type(status_t), intent(inout) :: status
+      integer :: k
+      call check_nodal(body%disp, 'displacement', status)
+      if (status%ok()) call check_nodal(body%react, 'reaction', status)
+      if (status%ok() .and. .not. all(ieee_is_finite(body%sig_gp))) then
+         k = first_bad(reshape(body%sig_gp, [size(body%sig_gp)]))
+         call status%set(STAT_NONFINITE, 'non-finite stress ('//text(body%sig_gp(mod(k - 1, 4) + 1, (k - 1)/4 + 1))// &
+                         ') at Gauss point '//itoa((k - 1)/4 + 1)//'; '//cause())
+      end if
+      if (.not. status%ok() .or. .not. has_contact) return
+      call check_pairs(st%s%fn, 'normal spring force', status)
+      if (status%ok()) call check_pairs(st%s%ft, 'tangential spring force', status)
+      if (status%ok()) call check_pairs(st%s%un, 'closure', status)
+      if (status%ok()) call check_pairs(st%s%ut, 'tangential displacement', status)
+      if (status%ok() .and. .not. ieee_is_finite(drift)) call status%set(STAT_NONFINITE, 'the interface law '// &
+         'overflows at the closures of the step (its pressure at a closure is not finite); '//cause())
+   end subroutine check_finite_step
+
+   !> The invariants, frozen states and drift of an accepted step: sets
+   !! step%violations, step%imbalance, step%frozen, step%doubts ('' if the
+   !! step is sound) and step%converged (false for an unsettled or frozen
+   !! step).
+   subroutine audit_step(cdef, st, ve_old, imbalance, has_contact, step)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(in) :: st       !! committed states of the step
+      real(dp), intent(in) :: ve_old(:)             !! effective slip before the step
+      real(dp), intent(in) :: imbalance             !! largest body imbalance, relative (body_imbalance)
+      logical, intent(in) :: has_contact
+      type(step_record_t), intent(inout) :: step
+      integer :: nbad
+      integer, allocatable :: bad(:), frozen(:)
+      character(len=:), allocatable :: imsg, d
+
+      nbad = 0
+      allocate (character(len=0) :: imsg, d)
+      allocate (bad(0), frozen(0))
+      if (has_contact) then
+         call check_invariants(st, ve_old, nbad, imsg, bad)
+         frozen = frozen_pairs(cdef, st)
+      end if
+      if (nbad > 0) imsg = imsg//' (pairs'//pair_list(bad)//')'
+      if (imbalance > 1.0e-8_dp) then
+         nbad = nbad + 1
+         if (len(imsg) > 0) imsg = imsg//'; '
+         imsg = imsg//'a body is out of equilibrium by '//rtoa(imbalance)//' of the load'
+      end if
+      step%imbalance = imbalance
+      step%violations = nbad
+      step%frozen = size(frozen)
+      ! frozen modes end the iteration without meeting its criterion
+      step%converged = step%status == STEP_CONVERGED .and. step%frozen == 0
+      if (size(frozen) > 0) d = 'contact states frozen after '//itoa(MAX_SWITCH)//' mode changes (chatter) at '// &
+                                itoa(size(frozen))//' pair(s):'//pair_list(frozen)
+      if (has_contact .and. step%drift > DRIFT_LIMIT) then
+         if (len(d) > 0) d = d//'; '
+         d = d//'normal spring forces up to '//percent(step%drift)//' % off the interface law (limit '// &
+             itoa(nint(100.0_dp*DRIFT_LIMIT))//' %; the most at pair '//itoa(worst_drift_pair(cdef, st))//')'
+      end if
+      if (nbad > 0) then
+         if (len(d) > 0) d = d//'; '
+         d = d//itoa(nbad)//' invariant violation(s): '//imsg
+      end if
+      step%doubts = d
+   end subroutine audit_step
+
+   !> Count a doubtful step in the run's doubts, keep its line and say so on
+   !! unit u (the first MAX_DOUBT_LINES steps).
+   subroutine note_doubts(doubts, step, u)
+      type(run_doubts_t), intent(inout) :: doubts
+      type(step_record_t), intent(in) :: step
+      integer, intent(in) :: u                      !! unit of the warning (the error unit)
+      if (.not. allocated(doubts%details)) doubts%details = ''
+      if (.not. allocated(step%doubts)) return
+      if (len(step%doubts) == 0) return
+      doubts%steps = doubts%steps + 1
+      if (doubts%first == 0) doubts%first = step%step
+      if (step%frozen > 0) doubts%frozen = doubts%frozen + 1
+      if (step%contact .and. step%drift > DRIFT_LIMIT) doubts%drift = doubts%drift + 1
+      if (step%violations > 0) doubts%violations = doubts%violations + 1
+      if (doubts%steps <= MAX_DOUBT_LINES) then
+         if (len(doubts%details) > 0) doubts%details = doubts%details//new_line('a')
+         doubts%details = doubts%details//'increment '//itoa(step%step)//': '//step%doubts
+         write (u, '(a)') 'kontakt2d: warning: increment '//itoa(step%step)//' is doubtful: '//step%doubts
+      end if
+   end subroutine note_doubts
+
+   !> One line for the result file's status and the terminal: how many steps
+   !! of each kind, and the first.
+   function doubt_summary(doubts, nstep) result(s)
+      type(run_doubts_t), intent(in) :: doubts
+      integer, intent(in) :: nstep                  !! steps completed
+      character(len=:), allocatable :: s
+      s = itoa(doubts%steps)//' of '//itoa(nstep)//' increment(s) doubtful ('
+      if (doubts%frozen > 0) s = s//'frozen contact states in '//itoa(doubts%frozen)//', '
+      if (doubts%drift > 0) s = s//'law drift over '//itoa(nint(100.0_dp*DRIFT_LIMIT))//' % in '// &
+                                itoa(doubts%drift)//', '
+      if (doubts%violations > 0) s = s//'invariant violations in '//itoa(doubts%violations)//', '
+      s = s(1:len(s) - 2)//'); the first: increment '//itoa(doubts%first)
+   end function doubt_summary
+
+   !> " 3 5 9" (the first 20 of a list of pairs, then " ...").
+   function pair_list(pairs) result(s)
+      integer, intent(in) :: pairs(:)
+      character(len=:), allocatable :: s
+      integer :: k
+      s = ''
+      do k = 1, min(size(pairs), 20)
+         s = s//' '//itoa(pairs(k))
+      end do
+      if (size(pairs) > 20) s = s//' ...'
+   end function pair_list
+
+   !> Warning when the method is used outside its comfort zone (once per
+   !! run): a tangential relative displacement above 10 % of the pair spacing
+   !! (node-to-node pairs assume small sliding: the partners must stay
+   !! opposite each other; very soft roughness or a large tangential load
+   !! breaks that).
+   subroutine sliding_warning(st, spacing, step, warned, nwarn)
+      type(contact_state_t), intent(in) :: st       !! committed states
+      real(dp), intent(in) :: spacing(:)            !! (npair) distance to the nearest other pair [length]
+      integer, intent(in) :: step                   !! the step
+      logical, intent(inout) :: warned              !! the warning was given (once per run)
+      integer, intent(inout) :: nwarn               !! warnings of the run
+      integer :: j
+      if (warned) return
+      do j = 1, size(st%s)
+         if (abs(st%s(j)%ut) > 0.1_dp*spacing(j)) then
+            warned = .true.
+            nwarn = nwarn + 1
+            call list_sliding_warning(stderr, step, j, abs(st%s(j)%ut), spacing(j))
+            return
+         end if
+      end do
+   end subroutine sliding_warning
+
+   ! ------------------------------------------------------------------ helpers
+
+   !> The closed rough pair whose normal force is farthest from its law (the
+   !! pair of law_drift's largest value; 0 if none is closed).
+   pure integer function worst_drift_pair(cdef, st) result(jw)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(in) :: st
+      integer :: j
+      real(dp) :: d, dmax
+      jw = 0
+      dmax = -1.0_dp
+      do j = 1, size(st%s)
+         associate (s => st%s(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            if (.not. s%closed .or. ifc%law /= LAW_ROUGH) cycle
+            d = abs(s%fn - pr%area*normal_pressure(s%un, ifc%cn, ifc%m, ifc%cn2, ifc%m2, s%on_unloading, s%ua, s%pa))
+            if (d > dmax) then
+               dmax = d
+               jw = j
+            end if
+         end associate
+      end do
+   end function worst_drift_pair
+
+   !> A nodal field (2, npoin): name the first non-finite entry.
+   subroutine check_nodal(v, what, status)
+      real(dp), intent(in) :: v(:, :)
+      character(len=*), intent(in) :: what
+      type(status_t), intent(inout) :: status
+      integer :: k
+      if (all(ieee_is_finite(v))) return
+      k = first_bad(reshape(v, [size(v)]))
+      call status%set(STAT_NONFINITE, 'non-finite '//what//' ('//text(v(mod(k - 1, 2) + 1, (k - 1)/2 + 1))// &
+                      ') at node '//itoa((k - 1)/2 + 1)//', dof '//merge('x', 'y', mod(k - 1, 2) == 0)//'; '//cause())
+   end subroutine check_nodal
+
+   !> A per-pair quantity: name the first pair with a non-finite value.
+   subroutine check_pairs(v, what, status)
+      real(dp), intent(in) :: v(:)
+      character(len=*), intent(in) :: what
+      type(status_t), intent(inout) :: status
+      integer :: k
+      if (all(ieee_is_finite(v))) return
+      k = first_bad(v)
+      call status%set(STAT_NONFINITE, 'non-finite '//what//' ('//text(v(k))//') at contact pair '//itoa(k)// &
+                      '; '//cause())
+   end subroutine check_pairs
+
+   pure integer function first_bad(v) result(k)
+      real(dp), intent(in) :: v(:)
+      do k = 1, size(v)
+         if (.not. ieee_is_finite(v(k))) return
+      end do
+      k = 0
+   end function first_bad
+
+   !> A fraction as a percentage with one decimal.
+   function percent(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: s
+      if (abs(x) < 1.0e6_dp) then
+         s = rtoa(100.0_dp*x, '(f0.1)')
+      else
+         s = 'more than 1E+08'        ! 100 x itself could overflow
+      end if
+   end function percent
+
+   !> What a non-finite number is: not a number, +infinity or -infinity.
+   pure function text(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: s
+      if (ieee_is_nan(x)) then
+         s = 'not a number'
+      else if (x > 0.0_dp) then
+         s = '+infinity'
+      else
+         s = '-infinity'
+      end if
+   end function text
+
+   pure function cause() result(s)
+      character(len=:), allocatable :: s
+      s = 'a number of the model is out of the range of double precision (a load factor, a modulus, '// &
+          'a roughness constant c_n^m or an exponent): check the deck''s values and units'
+   end function cause
+end module step_audit
