@@ -26,7 +26,9 @@ def main():
         if os.path.exists(h5[:-3] + ext):
             os.remove(h5[:-3] + ext)
     run = subprocess.run([exe, deck, "-q", "-o", h5, "-l", h5[:-3] + ".lis"], capture_output=True, text=True)
-    if run.returncode != 0:
+    # exit code 4 (completed with doubts: the paper's explicit scheme off its law) keeps every
+    # increment in the file, which is all the check needs
+    if run.returncode not in (0, 4):
         print(f"kontakt2d {deck}: exit code {run.returncode}\n{run.stdout}\n{run.stderr}")
         return 1
     check = os.path.join(os.path.dirname(os.path.abspath(__file__)), "check_paraview.py")

@@ -179,7 +179,12 @@ class TestCompare(Work):
         checked = 0
         for col, h5 in ((0, "as_given.h5"), (1, "SCHEME_NEWTON.h5")):
             res = Result(os.path.join(out, h5))
-            self.assertEqual(res.status, "completed")
+            # the deck as given runs the paper's explicit scheme, whose normal forces are
+            # genuinely off the law (a doubtful run, every increment kept); Newton is on it
+            if col == 0:
+                self.assertTrue(res.status.startswith("doubtful"), res.status)
+            else:
+                self.assertEqual(res.status, "completed")
             c = res.last.contact_all()
             closed = c["normal_state"] > 0
             self.assertTrue(closed.any())
