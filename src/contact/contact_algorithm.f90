@@ -90,7 +90,7 @@ module contact_algorithm
    type :: pair_mode_t
       logical :: closed = .false.
       logical :: newly_closed = .false.
-      logical :: held = .false.           !! RETURN: held once at the zero-force point instead of opening
+      logical :: held = .false.           !! RETURN: held at the zero-force point instead of opening
       logical :: on_unloading = .false.
       real(dp) :: ua = 0.0_dp, pa = 0.0_dp
       integer :: tstate = TS_STICK
@@ -485,6 +485,18 @@ contains
                   md%kn = s%fn/max(s%un - md%uthr, tiny(1.0_dp))
                   fn = md%kn*(u - md%uthr)
                   call flag(changed(j), md%nswitch, st%chatter)
+               else if (returning .and. ifc%m2 <= 1.0_dp .and. md%on_unloading .and. s%closed .and. &
+                        u < md%uthr .and. u > md%uthr - 1.0e-6_dp*abs(md%ua - md%uthr)) then
+                  ! RETURN, within 1e-6 of the branch's travel below its zero-force point (the
+                  ! accuracy of a solution in which the pair is the last support of a body, its
+                  ! chord stiffness vanishing): still touching, on the secant from A to the point,
+                  ! K (u - u_thr), which the next solution brings back to it; no change of state.
+                  ! The force left there is the increment's out-of-balance force (at most the
+                  ! residual tolerance); the committed force is clamped at zero
+                  md%held = .true.
+                  held_now = .true.
+                  md%kn = pr%area*md%pa/max(md%ua - md%uthr, tiny(1.0_dp))
+                  fn = md%kn*(u - md%uthr)
                else if ((fn < 0.0_dp .or. u <= md%uthr - utol) .and. may_switch) then
                   md%closed = .false.
                   md%newly_closed = .false.
@@ -833,6 +845,8 @@ contains
             if (md%closed) then
                s%closed = .true.
                s%fn = st%fn(j)
+               ! held at the zero-force point of a convex branch: no tension
+               if (md%held .and. ifc%m2 <= 1.0_dp) s%fn = max(s%fn, 0.0_dp)
                s%ft = st%ft(j)
                s%on_unloading = md%on_unloading
                s%ua = md%ua
