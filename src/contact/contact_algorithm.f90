@@ -93,7 +93,7 @@ module contact_algorithm
    type :: pair_mode_t
       logical :: closed = .false.
       logical :: newly_closed = .false.
-      logical :: held = .false.           !! RETURN: held once at the zero-force point instead of opening
+      logical :: held = .false.           !! RETURN: held at the zero-force point instead of opening
       logical :: on_unloading = .false.
       real(dp) :: ua = 0.0_dp, pa = 0.0_dp
       integer :: tstate = TS_STICK
@@ -472,17 +472,34 @@ contains
                else
                   fn = s%fn + md%kn*dun
                end if
-               if (returning .and. u <= md%uthr - utol .and. s%closed .and. s%fn > 0.0_dp .and. &
+               if (returning .and. ifc%m2 > 1.0_dp .and. u <= md%uthr - utol .and. s%closed .and. s%fn > 0.0_dp .and. &
                    .not. (md%held .or. md%newly_closed) .and. may_switch) then
                   ! RETURN, a loaded pair overshooting its zero-force point (a Newton step on a
                   ! concave branch, m2 > 1): once per increment it is held by the secant from
                   ! its start to that point, K (u - u_thr) <= 0, which the next solution
-                  ! brings back to the point; below it a second time, it opens
+                  ! brings back to the point; below it a second time, it opens.  On a convex
+                  ! branch (m2 <= 1) no such hold: the tangent step stops short of the point
+                  ! and the chord lands on it, so a pair the solution drives below it is
+                  ! pulled off by the other pairs and opens in that solution, with all the
+                  ! others driven through zero (a hold would cost every pair, and so every
+                  ! group of pairs opening in turn, one more solution)
                   md%held = .true.
                   held_now = .true.
                   md%kn = s%fn/max(s%un - md%uthr, tiny(1.0_dp))
                   fn = md%kn*(u - md%uthr)
                   call flag(changed(j), md%nswitch, st%chatter)
+               else if (returning .and. ifc%m2 <= 1.0_dp .and. md%on_unloading .and. s%closed .and. &
+                        u < md%uthr .and. u > md%uthr - 1.0e-6_dp*abs(md%ua - md%uthr)) then
+                  ! RETURN, within 1e-6 of the branch's travel below its zero-force point (the
+                  ! accuracy of a solution in which the pair is the last support of a body, its
+                  ! chord stiffness vanishing): still touching, on the secant from A to the point,
+                  ! K (u - u_thr), which the next solution brings back to it; no change of state.
+                  ! The force left there is the increment's out-of-balance force (at most the
+                  ! residual tolerance); the committed force is clamped at zero
+                  md%held = .true.
+                  held_now = .true.
+                  md%kn = pr%area*md%pa/max(md%ua - md%uthr, tiny(1.0_dp))
+                  fn = md%kn*(u - md%uthr)
                else if ((fn < 0.0_dp .or. u <= md%uthr - utol) .and. may_switch) then
                   md%closed = .false.
                   md%newly_closed = .false.
@@ -547,11 +564,17 @@ contains
 
    !> Normal spring stiffness of a closed rough pair for the next Newton
    !! solution (RETURN): the tangent of its branch at its closure, except
-   !! * when the last solution predicted zero (or tensile) force for the pair:
-   !!   the chord to the branch's zero-force point, A p(u)/(u - u_thr), which
-   !!   ends a pair that unloads to zero force at u_thr in one step (the tangent
-   !!   p^(1-m2)/(cn2 m2) vanishes there for m2 < 1, and Newton on a root of
-   !!   order 1/m2 only halves the distance per solution for m2 = 0.5);
+   !! * when the last solution predicted zero (or tensile) force for the pair,
+   !!   or, on a convex unloading branch (m2 <= 1), less than half the force the
+   !!   law gives now: the chord to the branch's zero-force point,
+   !!   A p(u)/(u - u_thr), which ends a pair that unloads to zero force at u_thr
+   !!   in one step (the tangent p^(1-m2)/(cn2 m2) vanishes there for m2 < 1, and
+   !!   Newton on a root of order 1/m2 only halves the distance per solution for
+   !!   m2 = 0.5).  Among pairs of a body unloaded to zero the chord weights the
+   !!   pairs of small u_thr most, so that the solutions open the pairs of larger
+   !!   u_thr in large groups instead of one by one.  The chord step lands below
+   !!   an intermediate target force (the branch is convex), after which the
+   !!   prediction exceeds the force and the tangent takes over: no cycling;
    !! * at zero force (tangent zero): the secant over the increment, which
    !!   does not vanish, so that a body held only by such pairs stays regular.
    pure real(dp) function newton_normal_stiffness(ifc, md, area, fn0, fnprev, fpred, fn, u, dun) result(k)
@@ -569,7 +592,9 @@ contains
       fref = max(fn0, abs(fnprev), fn, tiny(1.0_dp))
       if (md%on_unloading) fref = max(fref, area*md%pa)
       ktan = area*normal_tangent(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa)
-      if (fpred <= 1.0e-8_dp*fref .and. fn > 1.0e-12_dp*fref .and. u > md%uthr) then
+      if (fpred <= 0.5_dp*fn .and. fn > 1.0e-12_dp*fref .and. u > md%uthr .and. md%on_unloading .and. ifc%m2 <= 1.0_dp) then
+         k = fn/(u - md%uthr)
+      else if (fpred <= 1.0e-8_dp*fref .and. fn > 1.0e-12_dp*fref .and. u > md%uthr) then
          k = fn/(u - md%uthr)
       else if (ktan > 0.0_dp .and. fn > 1.0e-12_dp*fref) then
          k = max(ktan, 1.0e-3_dp*fn/max(u - md%uthr, tiny(1.0_dp)))
@@ -597,6 +622,7 @@ contains
       logical, intent(inout) :: changed, chatter
       real(dp) :: xb
       integer :: itrial, tsg
+      logical :: unloaded
       call bilinear_return(merge(0.0_dp, s%ft, md%newly_closed), dut, md%kte, ifc%kappa, md%mu*max(fn, 0.0_dp), &
                            merge(0.0_dp, s%xb, md%newly_closed), ifc%hardening, ft, xb, itrial)
       md%xb = xb
@@ -604,7 +630,8 @@ contains
       if (itrial /= TS_STICK) tsg = nint(sign(1.0_dp, ft - xb))
       ! at zero normal force (to round-off of the pair's forces) nothing holds the pair
       ! tangentially: it slips with F_T = 0 in no particular direction
-      if (fn <= 1.0e-12_dp*max(s%fn, area*md%pa, tiny(1.0_dp))) then
+      unloaded = fn <= 1.0e-12_dp*max(s%fn, area*md%pa, tiny(1.0_dp))
+      if (unloaded) then
          ft = 0.0_dp
          md%xb = 0.0_dp
          itrial = TS_SLIP
@@ -614,7 +641,10 @@ contains
          md%tstate = itrial
          md%tsign = tsg
          call set_kt(ifc, md)
-         call flag(changed, md%nswitch, chatter)
+         ! a pair reaching zero normal force loses its tangential hold with no jump of
+         ! force (mu F_n = 0 bounds stick and slip alike): not a change that forces
+         ! another solution; the out-of-balance force of the solution decides
+         if (.not. unloaded) call flag(changed, md%nswitch, chatter)
       end if
    end subroutine tangential_return
 
@@ -818,6 +848,8 @@ contains
             if (md%closed) then
                s%closed = .true.
                s%fn = st%fn(j)
+               ! held at the zero-force point of a convex branch: no tension
+               if (md%held .and. ifc%m2 <= 1.0_dp) s%fn = max(s%fn, 0.0_dp)
                s%ft = st%ft(j)
                s%on_unloading = md%on_unloading
                s%ua = md%ua
