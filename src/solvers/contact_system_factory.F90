@@ -8,21 +8,24 @@
 !! The choice (measured crossovers: docs/performance.md, "Automatic choice"):
 !! * without contact, or CONDENSE OFF: the full system (refactorize K_AB + K_c
 !!   for every new set of springs);
-!! * with the MUMPS solver, CONDENSE ON or AUTO: the Schur complement from
-!!   MUMPS's factorization (mumps_schur_system) -- one sparse factorization
-!!   for the whole run, measured faster than the full system at every size of
-!!   the benchmarks and than the column-by-column condensation everywhere;
+!! * with the MUMPS solver, CONDENSE ON: the Schur complement from MUMPS's
+!!   factorization (mumps_schur_system), one sparse factorization for the
+!!   whole run; AUTO takes it when its work per new set of springs, a dense
+!!   Cholesky factorization of the n_c contact equations, costs no more than
+!!   the full system's, a sparse factorization of the neq equations
+!!   (`schur_pays`), else the full system;
 !! * with another solver, CONDENSE ON, or AUTO up to
 !!   AUTO_MAX_CONTACT_EQUATIONS contact equations: the condensation by n_c
 !!   solves (condensed_system).
-!! AUTO falls back to the full system beyond AUTO_MAX_CONTACT_EQUATIONS (the
-!! dense system of the contact equations grows as n_c^2 in memory, n_c^3 in
-!! work per set of springs), and the Schur complement needs at least one
-!! equation off the contact equations.
+!! AUTO never condenses beyond AUTO_MAX_CONTACT_EQUATIONS (the dense system of
+!! the contact equations grows as n_c^2 in memory, n_c^3 in work per set of
+!! springs), and the Schur complement needs at least one equation off the
+!! contact equations (ON falls back to the condensation by solves).
 !!
 !! This file is preprocessed (.F90): the MUMPS system is compiled only when
 !! CMake defines KONTAKT2D_HAVE_MUMPS.
 module contact_system_factory
+   use kinds, only: dp
    use strings, only: upper
    use linear_solver, only: linear_solver_t
    use contact_system, only: contact_system_t
@@ -34,11 +37,18 @@ module contact_system_factory
 #endif
    implicit none
    private
-   public :: create_contact_system, AUTO_MAX_CONTACT_EQUATIONS
+   public :: create_contact_system, schur_pays, AUTO_MAX_CONTACT_EQUATIONS
 
    !> CONDENSE AUTO condenses up to this many contact equations (the dense
    !! system of the contact equations grows as n_c^2 in memory, n_c^3 in work).
    integer, parameter :: AUTO_MAX_CONTACT_EQUATIONS = 1500
+
+   !> The measured costs behind `schur_pays` (docs/performance.md, "Automatic
+   !! choice"; CPU seconds, one core, OpenBLAS): one MUMPS factorization of
+   !! the punch-on-foundation meshes takes T_SPARSE (neq/1e4)^SPARSE_EXPONENT
+   !! (1e4 to 1e6 equations), one dense Cholesky factorization of n_c contact
+   !! equations T_DENSE (n_c/1202)^3.
+   real(dp), parameter :: T_SPARSE = 0.016_dp, SPARSE_EXPONENT = 1.24_dp, T_DENSE = 0.019_dp
 
    !> Kinds of contact system.
    integer, parameter :: FULL = 0, CONDENSED = 1, SCHUR = 2
@@ -54,11 +64,13 @@ contains
       integer, intent(in) :: nc               !! contact equations (distinct free equations of the pairs)
       class(contact_system_t), allocatable, intent(out) :: sys
       class(linear_solver_t), intent(in), optional :: solver   !! the bodies' solver, analysed (neq known)
-      integer :: kind
+      integer :: kind, neq
       logical :: mumps
       mumps = .false.
+      neq = 0
 #ifdef KONTAKT2D_HAVE_MUMPS
       if (present(solver)) then
+         neq = solver%neq
          select type (solver)
          type is (mumps_solver_t)
             mumps = nc > 0 .and. nc < solver%neq
@@ -73,7 +85,10 @@ contains
          case ('OFF')
             kind = FULL
          case default
-            if (nc <= AUTO_MAX_CONTACT_EQUATIONS) kind = merge(SCHUR, CONDENSED, mumps)
+            if (nc <= AUTO_MAX_CONTACT_EQUATIONS) then
+               kind = CONDENSED
+               if (mumps) kind = merge(SCHUR, FULL, schur_pays(neq, nc))
+            end if
          end select
       end if
       select case (kind)
@@ -87,4 +102,13 @@ contains
          allocate (full_system_t :: sys)
       end select
    end subroutine create_contact_system
+
+   !> Does the Schur complement pay for a model of neq equations, nc of them
+   !! contact equations?  Both it and the full system factorize once per new
+   !! set of springs, densely the nc contact equations or sparsely all neq:
+   !! the Schur complement when the dense factorization costs no more.
+   pure logical function schur_pays(neq, nc)
+      integer, intent(in) :: neq, nc
+      schur_pays = T_DENSE*(real(nc, dp)/1202.0_dp)**3 <= T_SPARSE*(real(neq, dp)/1.0e4_dp)**SPARSE_EXPONENT
+   end function schur_pays
 end module contact_system_factory
