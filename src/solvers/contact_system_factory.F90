@@ -46,9 +46,10 @@ module contact_system_factory
    !> The measured costs behind `schur_pays` (docs/performance.md, "Automatic
    !! choice"; CPU seconds, one core, OpenBLAS): one MUMPS factorization of
    !! the punch-on-foundation meshes takes T_SPARSE (neq/1e4)^SPARSE_EXPONENT
-   !! (1e4 to 1e6 equations), one dense Cholesky factorization of n_c contact
-   !! equations T_DENSE (n_c/1202)^3.
-   real(dp), parameter :: T_SPARSE = 0.016_dp, SPARSE_EXPONENT = 1.24_dp, T_DENSE = 0.019_dp
+   !! (1e4 to 1e6 equations) and its solve about SOLVE_SHARE of that, one dense
+   !! Cholesky factorization of n_c contact equations T_DENSE (n_c/1202)^3.
+   real(dp), parameter :: T_SPARSE = 0.016_dp, SPARSE_EXPONENT = 1.24_dp, SOLVE_SHARE = 0.2_dp, &
+                          T_DENSE = 0.019_dp
 
    !> Kinds of contact system.
    integer, parameter :: FULL = 0, CONDENSED = 1, SCHUR = 2
@@ -105,10 +106,13 @@ contains
 
    !> Does the Schur complement pay for a model of neq equations, nc of them
    !! contact equations?  Both it and the full system factorize once per new
-   !! set of springs, densely the nc contact equations or sparsely all neq:
-   !! the Schur complement when the dense factorization costs no more.
+   !! set of springs, densely the nc contact equations or sparsely all neq,
+   !! and the full system also solves with all neq per solution: the Schur
+   !! complement when the dense factorization costs no more than the sparse
+   !! factorization and solve.
    pure logical function schur_pays(neq, nc)
       integer, intent(in) :: neq, nc
-      schur_pays = T_DENSE*(real(nc, dp)/1202.0_dp)**3 <= T_SPARSE*(real(neq, dp)/1.0e4_dp)**SPARSE_EXPONENT
+      schur_pays = T_DENSE*(real(nc, dp)/1202.0_dp)**3 <= &
+                   (1.0_dp + SOLVE_SHARE)*T_SPARSE*(real(neq, dp)/1.0e4_dp)**SPARSE_EXPONENT
    end function schur_pays
 end module contact_system_factory
