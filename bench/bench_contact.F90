@@ -12,11 +12,14 @@
 !! * the contact system from MUMPS's Schur complement: analysis and
 !!   factorization with the contact equations as Schur variables (its
 !!   set-up), one condensation of a right-hand side, one expansion, one dense
-!!   factorization of S + K_c (Cholesky) and one dense solve.
+!!   factorization of S + K_c (Cholesky) and one dense solve, directly and in
+!!   the springs' own coordinates (contact_projection).
 !! Output: one CSV line, in this order: neq, nc, nnz_factor (plain
 !! factorization), analyse_s, assembly_s, factorize_s, solve_s, schur_s
 !! (analysis + factorization with the Schur complement), condense_s,
-!! expand_s, dense_factorize_s, dense_solve_s, peak_rss_mb (VmHWM),
+!! expand_s, dense_factorize_s, dense_solve_s (the direct dense system),
+!! proj_setup_s, proj_factorize_s, proj_solve_s (the same in the springs' own
+!! coordinates: set-up once, then per set of springs), peak_rss_mb (VmHWM),
 !! max_rel_diff (largest difference of the Schur path's solution from the
 !! plain solve's, relative to its largest entry).  CPU times (cpu_time, one
 !! thread: OPENBLAS_NUM_THREADS=1 is the benchmark's setting).
@@ -52,7 +55,7 @@ program bench_contact
    character(len=512) :: deck
    integer :: j, k, nc
    integer(i8) :: nnzf
-   real(dp) :: t0, t_an, t_as, t_fa, t_so, t_sc, t_co, t_ex, t_df, t_ds
+   real(dp) :: t0, t_an, t_as, t_fa, t_so, t_sc, t_co, t_ex, t_df, t_ds, t_ps, t_pf, t_pv
 
    call get_command_argument(1, deck)
    if (len_trim(deck) == 0) stop 'usage: bench_contact DECK'
@@ -137,12 +140,26 @@ program bench_contact
       call s%schur_expand(g, y, st)
       call check('schur_expand')
       t_ex = elapsed(t0)
+      ! the same dense system in the springs' own coordinates
+      call cpu_time(t0)
+      call dense%prepare_projection(ppos, kref)
+      t_ps = elapsed(t0)
+      dk = -0.5_dp*kref          ! springs of half the reference stiffness: K_c - K_ref = -K_ref/2
+      call cpu_time(t0)
+      call dense%set_springs(ppos, dk, st)
+      call check('dense factorization in the springs'' coordinates')
+      t_pf = elapsed(t0)
+      if (.not. dense%projected) stop 'bench_contact: the springs'' coordinates were not used'
+      g = y(ceq)
+      call cpu_time(t0)
+      call dense%solve(g, st)
+      t_pv = elapsed(t0)
    end select
 #else
    stop 'bench_contact: built without MUMPS'
 #endif
-   write (*, '(i0,",",i0,",",i0,9(",",es12.5),",",f0.1,",",es10.3)') map%neq, nc, nnzf, t_an, t_as, t_fa, t_so, &
-      t_sc, t_co, t_ex, t_df, t_ds, peak_rss_mb(), maxval(abs(y - x))/maxval(abs(x))
+   write (*, '(i0,",",i0,",",i0,12(",",es12.5),",",f0.1,",",es10.3)') map%neq, nc, nnzf, t_an, t_as, t_fa, t_so, &
+      t_sc, t_co, t_ex, t_df, t_ds, t_ps, t_pf, t_pv, peak_rss_mb(), maxval(abs(y - x))/maxval(abs(x))
 
 contains
 

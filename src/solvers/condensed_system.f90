@@ -155,6 +155,7 @@ contains
             this%dense%s(j + 1:, j) = this%dense%s(j, j + 1:)
          end do
       end if
+      call this%dense%prepare_projection(this%ppos, kref)
       allocate (this%dk, mold=kref)
       this%dk = 0.0_dp
       allocate (this%w1(this%neq), this%work(this%neq), this%rsum(this%nc), this%zc(this%nc), this%xc(this%nc))

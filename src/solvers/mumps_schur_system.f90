@@ -136,6 +136,7 @@ contains
                           'the factorization failed ('//status%message//'); check the restraints'
          return
       end if
+      call this%dense%prepare_projection(this%ppos, kref)
       allocate (this%b1(this%neq), this%bsum(this%neq), this%work(this%neq), this%xsum(this%nc), &
                 this%xpost(this%nc), this%xc(this%nc))
       this%bsum = 0.0_dp
