@@ -46,10 +46,11 @@ module contact_system_factory
    !> The measured costs behind `schur_pays` (docs/performance.md, "Automatic
    !! choice"; CPU seconds, one core, OpenBLAS): one MUMPS factorization of
    !! the punch-on-foundation meshes takes T_SPARSE (neq/1e4)^SPARSE_EXPONENT
-   !! (1e4 to 1e6 equations) and its solve about SOLVE_SHARE of that, one dense
-   !! Cholesky factorization of n_c contact equations T_DENSE (n_c/1202)^3.
+   !! (1e4 to 1e6 equations) and its solve about SOLVE_SHARE of that; a new
+   !! set of springs on n_c contact equations and a solve with them, in the
+   !! springs' own coordinates (contact_projection), T_DENSE (n_c/1202)^3.
    real(dp), parameter :: T_SPARSE = 0.016_dp, SPARSE_EXPONENT = 1.24_dp, SOLVE_SHARE = 0.2_dp, &
-                          T_DENSE = 0.019_dp
+                          T_DENSE = 0.005_dp
 
    !> Kinds of contact system.
    integer, parameter :: FULL = 0, CONDENSED = 1, SCHUR = 2
@@ -106,10 +107,9 @@ contains
 
    !> Does the Schur complement pay for a model of neq equations, nc of them
    !! contact equations?  Both it and the full system factorize once per new
-   !! set of springs, densely the nc contact equations or sparsely all neq,
-   !! and the full system also solves with all neq per solution: the Schur
-   !! complement when the dense factorization costs no more than the sparse
-   !! factorization and solve.
+   !! set of springs and solve, densely on the nc contact equations or
+   !! sparsely on all neq: the Schur complement when the dense work costs no
+   !! more than the sparse factorization and solve.
    pure logical function schur_pays(neq, nc)
       integer, intent(in) :: neq, nc
       schur_pays = T_DENSE*(real(nc, dp)/1202.0_dp)**3 <= &
