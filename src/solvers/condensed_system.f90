@@ -208,6 +208,12 @@ contains
       end if
       call this%dense%solve(this%xc, status)
       if (.not. status%ok()) return
+      if (this%dense%bad > 0) then
+         this%bad_eq = this%ceq(this%dense%bad)
+         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%bad_eq)// &
+                         ' of the condensed contact system')
+         return
+      end if
       ! zc += dK_cc dv_c, pair by pair
       do j = 1, size(this%ppos, 2)
          do c = 1, size(this%ppos, 1)

@@ -68,6 +68,11 @@ module contact_dense
    !> Relative pivot threshold of the small system of a low-rank update,
    !! below which the system is refactorized instead.
    real(dp), parameter :: LOWRANK_TOL = 1.0e-8_dp
+   !> Iterative refinement of a solution through Woodbury's identity: until
+   !! the correction is below REFINE_TOL of the solution, at most MAX_REFINE
+   !! steps (else the direct factorization).
+   real(dp), parameter :: REFINE_TOL = 1.0e-12_dp
+   integer, parameter :: MAX_REFINE = 3
 
    !> S, and the factors of S + K_c.
    type :: contact_dense_t
@@ -98,6 +103,10 @@ module contact_dense
       type(contact_projection_t) :: proj     !! S's fixed matrices in them
       logical :: projected = .false.         !! the current springs are factorized there
       integer, allocatable :: ppos(:, :)     !! (nd, npair) positions of the pairs' dofs
+      real(dp), allocatable :: kcur(:, :, :) !! (nd, nd, npair) the current springs
+      real(dp), allocatable :: g0(:), r(:)   !! (n) right-hand side and residual of a refinement
+      integer :: refinements = 0             !! refinement steps so far
+      integer :: fallbacks = 0               !! refinements that gave up for the direct factorization
    contains
       procedure :: init => dense_init
       procedure :: prepare_projection => dense_prepare_projection
@@ -108,6 +117,10 @@ module contact_dense
       procedure, private :: add_spring => dense_add_spring
       procedure, private :: factorize => dense_factorize
       procedure, private :: low_rank => dense_low_rank
+      procedure, private :: woodbury_solve => dense_woodbury_solve
+      procedure, private :: base_solve => dense_base_solve
+      procedure, private :: residual => dense_residual
+      procedure, private :: direct => dense_direct
    end type contact_dense_t
 
    interface
@@ -141,6 +154,13 @@ module contact_dense
          real(dp), intent(inout) :: b(ldb, *)
          integer, intent(out) :: info
       end subroutine dgetrs
+      subroutine dsymv(uplo, n, alpha, a, lda, x, incx, beta, y, incy)
+         import :: dp
+         character(len=1), intent(in) :: uplo
+         integer, intent(in) :: n, lda, incx, incy
+         real(dp), intent(in) :: alpha, beta, a(lda, *), x(*)
+         real(dp), intent(inout) :: y(*)
+      end subroutine dsymv
       subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
          import :: dp
          character(len=1), intent(in) :: trans
@@ -160,11 +180,15 @@ contains
       integer :: q
       this%n = n
       if (allocated(this%s)) deallocate (this%s, this%a, this%diag, this%rhs, this%ipiv, this%kc0, this%plist, &
-                                         this%mark, this%z, this%d, this%mm, this%mpiv, this%t)
+                                         this%mark, this%z, this%d, this%mm, this%mpiv, this%t, this%ppos, &
+                                         this%kcur, this%g0, this%r)
       q = max(1, n/8)
       this%lowrank_max = q
       allocate (this%s(n, n), this%a(n, n), this%diag(n), this%rhs(n, 1), this%ipiv(n), this%kc0(nd, nd, npair), &
-                this%plist(q), this%mark(n), this%z(n, q), this%d(q, q), this%mm(q, q), this%mpiv(q), this%t(q))
+                this%plist(q), this%mark(n), this%z(n, q), this%d(q, q), this%mm(q, q), this%mpiv(q), this%t(q), &
+                this%ppos(nd, npair), this%kcur(nd, nd, npair), this%g0(n), this%r(n))
+      this%ppos = 0
+      this%kcur = 0.0_dp
       this%s = 0.0_dp
       this%kc0 = 0.0_dp
       this%mark = 0
@@ -195,10 +219,11 @@ contains
       integer, intent(in) :: ppos(:, :)           !! (nd, npair)
       real(dp), intent(in) :: kc(:, :, :)         !! (nd, nd, npair)
       type(status_t), intent(inout) :: status
-      integer :: j
       logical :: done
       this%bad = 0
       this%projected = .false.
+      this%ppos = ppos
+      this%kcur = kc
       if (this%proj%ready) then
          call this%proj%set_springs(ppos, kc, this%projected)
          if (this%projected) return
@@ -207,14 +232,7 @@ contains
          call this%low_rank(ppos, kc, done, status)
          if (done .or. .not. status%ok()) return
       end if
-      call this%begin_springs()
-      do j = 1, size(ppos, 2)
-         call this%add_spring(ppos(:, j), kc(:, :, j))
-      end do
-      call this%factorize(status)
-      this%kc0 = kc
-      this%m = 0
-      this%factorizations = this%factorizations + 1
+      call this%direct(status)
    end subroutine dense_set_springs
 
    !> The springs kc as a low-rank update of the factors of A_0 (see the
@@ -397,17 +415,71 @@ contains
       this%factored = .true.
    end subroutine dense_factorize
 
-   !> x = (S + K_c)^-1 x with the factors (x overwritten).
+   !> x = (S + K_c)^-1 x with the factors (x overwritten).  A solution
+   !! through Woodbury's identity (a low-rank update, or the springs'
+   !! coordinates) is refined against S + K_c itself until the correction is
+   !! below REFINE_TOL of it; if it is not after MAX_REFINE steps, the springs
+   !! are factorized directly and the solve repeated (a singular system then
+   !! gives `bad` > 0 for the caller to report, as from set_springs).
    subroutine dense_solve(this, x, status)
       class(contact_dense_t), intent(inout) :: this
       real(dp), intent(inout) :: x(:)            !! (n)
       type(status_t), intent(inout) :: status
-      integer :: info, m, j, k
+      integer :: it
+      this%bad = 0
       if (this%n == 0) return
+      if (this%projected .or. this%m > 0) then
+         this%g0 = x
+         call this%woodbury_solve(x, status)
+         if (.not. status%ok()) return
+         do it = 1, MAX_REFINE
+            call this%residual(x, this%r)
+            call this%woodbury_solve(this%r, status)
+            if (.not. status%ok()) return
+            x = x + this%r
+            this%refinements = this%refinements + 1
+            if (maxval(abs(this%r)) <= REFINE_TOL*maxval(abs(x))) return
+         end do
+         ! not converging: the direct factorization of these springs
+         this%fallbacks = this%fallbacks + 1
+         call this%direct(status)
+         if (.not. status%ok() .or. this%bad > 0) return
+         x = this%g0
+      end if
+      call this%base_solve(x, status)
+   end subroutine dense_solve
+
+   !> Solve with the factors of A_0 and the low-rank update, or in the
+   !! springs' coordinates.
+   subroutine dense_woodbury_solve(this, x, status)
+      class(contact_dense_t), intent(inout) :: this
+      real(dp), intent(inout) :: x(:)
+      type(status_t), intent(inout) :: status
+      integer :: info, m, j, k
       if (this%projected) then
          call this%proj%solve(this%ppos, x)
          return
       end if
+      call this%base_solve(x, status)
+      if (.not. status%ok()) return
+      ! the low-rank update: x = y - Z t, (I + D Z_p) t = D y_p
+      m = this%m
+      do k = 1, m
+         this%t(k) = 0.0_dp
+         do j = 1, m
+            this%t(k) = this%t(k) + this%d(k, j)*x(this%plist(j))
+         end do
+      end do
+      call dgetrs('N', m, 1, this%mm, size(this%mm, 1), this%mpiv, this%t, m, info)
+      call dgemv('N', this%n, m, -1.0_dp, this%z, this%n, this%t, 1, 1.0_dp, x, 1)
+   end subroutine dense_woodbury_solve
+
+   !> Solve with the factors of the last direct factorization (A_0).
+   subroutine dense_base_solve(this, x, status)
+      class(contact_dense_t), intent(inout) :: this
+      real(dp), intent(inout) :: x(:)
+      type(status_t), intent(inout) :: status
+      integer :: info
       if (.not. this%factored) then
          call status%set(STAT_SOLVER, 'contact system: solve without valid factors of the contact equations')
          return
@@ -423,19 +495,42 @@ contains
          return
       end if
       x = this%rhs(:, 1)
-      if (this%m > 0) then
-         ! the low-rank update: x = y - Z t, (I + D Z_p) t = D y_p
-         m = this%m
-         do k = 1, m
-            this%t(k) = 0.0_dp
-            do j = 1, m
-               this%t(k) = this%t(k) + this%d(k, j)*x(this%plist(j))
+   end subroutine dense_base_solve
+
+   !> r = g0 - (S + K_c) x for the current springs.
+   subroutine dense_residual(this, x, r)
+      class(contact_dense_t), intent(inout) :: this
+      real(dp), intent(in) :: x(:)
+      real(dp), intent(out) :: r(:)
+      integer :: j, a, b
+      call dsymv('U', this%n, -1.0_dp, this%s, this%n, x, 1, 0.0_dp, r, 1)
+      r = r + this%g0
+      do j = 1, size(this%ppos, 2)
+         do b = 1, size(this%ppos, 1)
+            if (this%ppos(b, j) <= 0) cycle
+            do a = 1, size(this%ppos, 1)
+               if (this%ppos(a, j) <= 0) cycle
+               r(this%ppos(a, j)) = r(this%ppos(a, j)) - this%kcur(a, b, j)*x(this%ppos(b, j))
             end do
          end do
-         call dgetrs('N', m, 1, this%mm, size(this%mm, 1), this%mpiv, this%t, m, info)
-         call dgemv('N', this%n, m, -1.0_dp, this%z, this%n, this%t, 1, 1.0_dp, x, 1)
-      end if
-   end subroutine dense_solve
+      end do
+   end subroutine dense_residual
+
+   !> The direct factorization of S + the current springs.
+   subroutine dense_direct(this, status)
+      class(contact_dense_t), intent(inout) :: this
+      type(status_t), intent(inout) :: status
+      integer :: j
+      this%projected = .false.
+      call this%begin_springs()
+      do j = 1, size(this%ppos, 2)
+         call this%add_spring(this%ppos(:, j), this%kcur(:, :, j))
+      end do
+      call this%factorize(status)
+      this%kc0 = this%kcur
+      this%m = 0
+      this%factorizations = this%factorizations + 1
+   end subroutine dense_direct
 
    !> S, the factors, and the vectors [bytes].
    pure integer(i8) function dense_memory(this) result(bytes)
@@ -445,6 +540,7 @@ contains
       q = int(this%lowrank_max, i8)
       bytes = 8_i8*(2_i8*n*n + 2_i8*n + n*q + 2_i8*q*q + q) + 4_i8*(2_i8*n + 2_i8*q)
       if (allocated(this%kc0)) bytes = bytes + 8_i8*size(this%kc0, kind=i8)
+      if (allocated(this%kcur)) bytes = bytes + 8_i8*size(this%kcur, kind=i8) + 16_i8*n
       bytes = bytes + this%proj%memory_bytes()
    end function dense_memory
 end module contact_dense

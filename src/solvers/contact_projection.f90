@@ -9,7 +9,9 @@
 !! every set of springs is K_c - K_ref = U D U^T with D block diagonal
 !! (D_j = Q_j^T (K_c,j - K_ref,j) Q_j), checked pair by pair: a spring matrix
 !! outside the range of its reference springs (by more than 1e-12 of their
-!! scale) leaves the system to the direct factorization of contact_dense.
+!! scale), or stiffer than 1e4 times them (penalty springs, where the formula
+!! below would lose digits), leaves the system to the direct factorization of
+!! contact_dense.
 !! With S fixed, Woodbury's identity in the form that needs no inverse of D
 !! (D is zero for a pair whose springs equal the reference ones),
 !!
@@ -43,6 +45,15 @@ module contact_projection
    real(dp), parameter :: PIVOT_TOL = 1.0e-12_dp
    !> The coordinates are used when r <= MAX_SHARE n_c.
    real(dp), parameter :: MAX_SHARE = 0.6_dp
+   !> Largest entry of D_j, relative to the scale of the reference springs,
+   !! taken in the coordinates.  Woodbury's x = y - V (t - z) cancels: the
+   !! error of the springs' relative displacements grows like eps |D|/|F^-1|,
+   !! and so does that of their forces relative to the load (measured: the
+   !! penalty springs of ideal contact, 1e8 times stiffer than the bodies,
+   !! left the bodies out of equilibrium by 1.5e-7 of the load).  1e4 keeps
+   !! it near 1e-12; stiffer springs go to the direct factorization, which is
+   !! backward stable for them.
+   real(dp), parameter :: MAX_STIFFNESS_RATIO = 1.0e4_dp
 
    type :: contact_projection_t
       logical :: ready = .false.               !! set up, and worth using
@@ -252,6 +263,9 @@ contains
                end do
             end do
          end do
+         if (rk > 0) then
+            if (.not. maxval(abs(this%d(1:rk, 1:rk))) <= MAX_STIFFNESS_RATIO*this%kscale(j)) return
+         end if
          ! kc_j = Q_j D_j Q_j^T, or the coordinates do not hold it
          do b = 1, nd
             if (ppos(b, j) <= 0) cycle

@@ -188,6 +188,12 @@ contains
       end if
       call this%dense%solve(this%xc, status)
       if (.not. status%ok()) return
+      if (this%dense%bad > 0) then
+         this%bad_eq = this%ceq(this%dense%bad)
+         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%bad_eq)// &
+                         ' of the Schur complement')
+         return
+      end if
       this%xsum = this%xsum + this%xc
       do k = 1, size(this%cdof, 2)
          du(this%cdof(1, k), this%cdof(2, k)) = this%xc(this%cdof(3, k))
