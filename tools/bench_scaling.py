@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Scaling benchmark: the rough punch on a foundation from 1e4 to 1e6 equations, every solution path.
 
-    tools/bench_scaling.py [--sizes 1e4 3e4 ...] [--paths skyline:on umfpack:off ...]
+    tools/bench_scaling.py [--sizes 1e4 3e4 ...] [--paths skyline:on mumps:on ...]
+                           [--spheres a5 a10 a20] [--no-linear] [--no-first]
                            [--out DIR] [--generate-only] [--exe PATH] [--timeout S]
+    tools/bench_scaling.py --report [--out DIR] [--plot FILE]
 
 The model (issue 13's benchmark family): plane strain, an elastic punch (half width 50, height
 50) pressed by 1.2 N/mm2 onto an elastic foundation (half width 120, depth 120), E = 4000 N/mm2,
@@ -21,16 +23,32 @@ makes and corrected once).  The decks use MESH/GROUP cards (docs/deck-format.md)
 the last increment in the result file (OPTIONS RESULTS 50).
 
 A path is SOLVER:CONDENSE -- the solver (skyline, umfpack, mumps; `-s`) and OPTIONS CONDENSE ON
-(bodies condensed onto the contact equations once) or OFF (the whole system factorized at every
-solution).  Each run is a separate process (OPENBLAS_NUM_THREADS=1 unless set); the table
-(terminal and OUT/scaling.csv) gives per size and path the DOFs of the mesh (2 per node, before
-the restraints), the exit code, the solutions (summed from the run's progress lines, its
-terminal log beside the result file)
-of the run, its CPU time (user + system) and peak resident memory (from the operating system),
+(bodies condensed onto the contact equations once: by n_c solves, or with MUMPS by its Schur
+complement) or OFF (the whole system factorized at every solution).  Each run is a separate
+process (OPENBLAS_NUM_THREADS=1 unless set); the table (terminal and OUT/scaling.csv) gives per
+size and path the DOFs of the mesh (2 per node, before the restraints), the exit code, the
+solutions (summed from the run's progress lines, its terminal log beside the result file) of
+the run, its CPU time (user + system) and peak resident memory (from the operating system),
 and the largest difference of the final displacements from the first path's, relative to the
-largest displacement (all paths solve the same equations).
+largest displacement (all paths solve the same equations).  Unless --no-first, every path also
+runs the deck cut to its first increment (`_first` decks), so that a later increment costs
+(CPU of 50 increments - CPU of the first) / 49.
 
-Sizes are 1e4, 3e4, 1e5, 3e5 and 1e6 equations (default: all; the 1e6 mesh takes about a minute
+Unless --no-linear, every size is also measured by bench/bench_contact.F90 (target
+bench_contact, built if needed) in the same run: one linear solve of the same mesh (MUMPS
+analysis, factorization of K_AB + K_ref, one back-substitution) and the parts of the Schur path
+(analysis + factorization with the Schur complement, condensation, expansion, dense Cholesky
+and solve of the 1 202 contact equations); OUT/linear.csv.
+
+--spheres adds the rough sphere of example 5.2 (P = 200 N, c_n = 0.8, NEWTON, 5 increments) with
+contact spacing a_H/5, a_H/10, a_H/20 (tools/k2d/examples.py), run along the same paths.
+
+--report reads OUT/scaling.csv and OUT/linear.csv and prints the tables of docs/performance.md
+(set-up, later increment, total and peak memory against DOFs, each also as a ratio to one linear
+solve, with least-squares exponents) and draws the log-log plot (--plot, default
+docs/bench/scaling.png).
+
+Sizes are 1e4, 3e4, 1e5, 3e5 and 1e6 equations (default: all; the 1e6 mesh takes a few minutes
 to make and the skyline solver there hours).  Default OUT: build/bench_scaling.
 """
 import argparse
@@ -47,7 +65,7 @@ sys.path.insert(0, HERE)
 
 import numpy as np  # noqa: E402
 
-from k2d.build import ROOT, find_or_build  # noqa: E402
+from k2d.build import ROOT, build_target, find_or_build  # noqa: E402
 from k2d.deck import f10  # noqa: E402
 from k2d.results import Result  # noqa: E402
 
@@ -91,8 +109,8 @@ Physical Curve("base") = {{14, 15}};
 """
 
 
-def deck_text(name, msh, condense, target, neq):
-    """The deck of one size and CONDENSE choice."""
+def deck_text(name, msh, condense, target, neq, first_only=False):
+    """The deck of one size and CONDENSE choice (first_only: cut to its first increment)."""
     c = [f"# Scaling benchmark (tools/bench_scaling.py): rough punch on a foundation, plane strain,",
          f"# {neq} DOFs (target {target}), 301 contact pairs, 50 Newton increments; units N, mm,",
          f"# N/mm2, roughness constants in um and kgf/cm2 (UNITS KGF_UM).  Mesh {msh} from {name}.geo.",
@@ -103,7 +121,8 @@ def deck_text(name, msh, condense, target, neq):
          "              2    2    0    2    0   SKYLINE",
          "OPTIONS",
          f"CONDENSE  {condense}",
-         "RESULTS           50                               # the last increment only",
+         "RESULTS           50                               # the last increment only" if not first_only
+         else "RESULTS            1",
          "MESH",
          f"GMSH      {msh}",
          "MATERIAL  punch                            1",
@@ -131,9 +150,7 @@ def deck_text(name, msh, condense, target, neq):
          "SURFACE   A         contact_a",
          "SURFACE   B         contact_b",
          "INCREMENTS",
-         "    1      0.05",
-         "   49       1.0",
-         "END"]
+         "    1      0.05"] + ([] if first_only else ["   49       1.0"]) + ["END"]
     return "\n".join(c) + "\n"
 
 
@@ -235,15 +252,78 @@ def run(exe, deck, h5, solver, timeout):
     return rc, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024.0
 
 
+def bench_contact(build, deck):
+    """bench_contact's CSV line for a deck, as a dict (None on failure)."""
+    exe = os.path.join(build, "bench_contact")
+    r = subprocess.run([exe, deck], capture_output=True, text=True, cwd=os.path.dirname(deck))
+    line = r.stdout.strip().splitlines()[-1] if r.stdout.strip() else ""
+    parts = line.split(",")
+    if r.returncode != 0 or len(parts) != len(LINEAR_FIELDS):
+        print(f"bench_contact failed on {deck}:\n{r.stdout[-2000:]}\n{r.stderr[-2000:]}", flush=True)
+        return None
+    return {k: (int(v) if k in ("neq", "nc", "nnz_factor") else float(v)) for k, v in zip(LINEAR_FIELDS, parts)}
+
+
+LINEAR_FIELDS = ["neq", "nc", "nnz_factor", "analyse_s", "assembly_s", "factorize_s", "solve_s", "schur_s",
+                 "condense_s", "expand_s", "dense_factorize_s", "dense_solve_s", "proj_setup_s", "proj_factorize_s",
+                 "proj_solve_s", "peak_rss_mb", "max_rel_diff"]
+SPHERES = {"a5": 5.0, "a10": 10.0, "a20": 20.0}
+
+
+def sphere_deck(out, tag):
+    """Example 5.2's rough sphere with contact spacing a_H/n (5 NEWTON increments)."""
+    from k2d import examples
+    path = os.path.join(out, f"sphere_{tag}.dat")
+    examples.sphere(path, P=200.0, cn=0.8, update="NEWTON", nincs=5, hdiv=SPHERES[tag])
+    return path
+
+
+def run_paths(exe, label, dofs, decks, paths, out, timeout, rows, first_decks=None):
+    """Run every path on the decks of one size; append the rows."""
+    ref = None
+    for path in paths:
+        solver, _, cond = path.partition(":")
+        cond = cond.upper()
+        h5 = os.path.join(out, f"{label}_{solver}_{cond.lower()}.h5")
+        rc, cpu, rss = run(exe, decks[cond], h5, solver, timeout)
+        row = {"size": label, "dofs": dofs, "path": path, "rc": rc, "cpu_s": round(cpu, 3), "peak_mb": round(rss, 1)}
+        if rc == 0:
+            r = Result(h5)
+            row["solutions"] = solutions(os.path.splitext(h5)[0] + ".log")
+            u = r.last.field("displacement")
+            if ref is None:
+                ref = u
+                row["max_rel_diff"] = 0.0
+            else:
+                row["max_rel_diff"] = float(np.abs(u - ref).max() / np.abs(ref).max())
+        if first_decks and rc == 0:
+            h5f = os.path.join(out, f"{label}_{solver}_{cond.lower()}_first.h5")
+            rcf, cpuf, _ = run(exe, first_decks[cond], h5f, solver, timeout)
+            if rcf == 0:
+                row["first_cpu_s"] = round(cpuf, 3)
+        rows.append(row)
+        print(f"{label:>5s} {dofs:9d} {path:>12s} {str(rc):>7s} {str(row.get('solutions', '-')):>9s} "
+              f"{cpu:9.2f} {row.get('first_cpu_s', float('nan')):9.2f} {rss:9.1f} "
+              f"{row.get('max_rel_diff', float('nan')):12.2e}", flush=True)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--sizes", nargs="+", default=SIZES, choices=SIZES)
+    p.add_argument("--sizes", nargs="*", default=SIZES, choices=SIZES)
     p.add_argument("--paths", nargs="+", default=PATHS, help="SOLVER:ON|OFF (default: all six)")
+    p.add_argument("--spheres", nargs="*", default=[], choices=sorted(SPHERES))
+    p.add_argument("--no-linear", action="store_true", help="skip bench_contact (one linear solve, Schur parts)")
+    p.add_argument("--no-first", action="store_true", help="skip the runs cut to the first increment")
     p.add_argument("--out", default=os.path.join(ROOT, "build", "bench_scaling"))
     p.add_argument("--generate-only", action="store_true", help="write the meshes and decks, run nothing")
     p.add_argument("--exe", help="the kontakt2d program (default: K2D_EXECUTABLE or build/kontakt2d)")
     p.add_argument("--timeout", type=float, default=3600.0, help="seconds per run")
+    p.add_argument("--append", action="store_true", help="add to OUT/scaling.csv and OUT/linear.csv")
+    p.add_argument("--report", action="store_true", help="tables and plot from OUT's CSV files, run nothing")
+    p.add_argument("--plot", default=os.path.join(ROOT, "docs", "bench", "scaling.png"))
     args = p.parse_args()
+    if args.report:
+        return report(args.out, args.plot)
     for path in args.paths:
         s, _, c = path.partition(":")
         if s not in ("skyline", "umfpack", "mumps", "dense") or c.upper() not in ("ON", "OFF"):
@@ -251,51 +331,166 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     exe = None if args.generate_only else find_or_build(args.exe)
+    build = None
+    if not (args.generate_only or args.no_linear):
+        # bench_contact beside the program, else built in the program's build directory
+        build = os.path.dirname(os.path.abspath(exe))
+        if not os.path.exists(os.path.join(build, "bench_contact")):
+            build = build_target("bench_contact", build if args.exe else None)
 
-    rows = []
+    rows, linear = [], []
     print(f"{'size':>5s} {'DOFs':>9s} {'path':>12s} {'rc':>7s} {'solutions':>9s} {'CPU [s]':>9s} "
-          f"{'peak [MB]':>9s} {'max |du|/|u|':>12s}", flush=True)
+          f"{'first [s]':>9s} {'peak [MB]':>9s} {'max |du|/|u|':>12s}", flush=True)
     for size in args.sizes:
         name = f"punch_{size}"
-        msh, neq_mesh = make_mesh(args.out, name, float(size))
-        decks = {}
+        msh = os.path.join(args.out, name + ".msh")
+        if os.path.exists(msh) and os.path.exists(os.path.join(args.out, name + ".geo")):
+            neq_mesh = 2 * msh_nodes(msh)          # made by an earlier run: kept
+        else:
+            msh, neq_mesh = make_mesh(args.out, name, float(size))
+        decks, firsts = {}, {}
         for cond in ("ON", "OFF"):
-            deck = os.path.join(args.out, f"{name}_condense_{cond.lower()}.dat")
-            with open(deck, "w") as f:
-                f.write(deck_text(name, os.path.basename(msh), cond, size, neq_mesh))
-            decks[cond] = deck
-        print(f"{size:>5s} {neq_mesh:9d} mesh {os.path.basename(msh)}, decks {name}_condense_on/off.dat",
+            for first, store in ((False, decks), (True, firsts)):
+                deck = os.path.join(args.out, f"{name}_condense_{cond.lower()}{'_first' if first else ''}.dat")
+                with open(deck, "w") as f:
+                    f.write(deck_text(name, os.path.basename(msh), cond, size, neq_mesh, first_only=first))
+                store[cond] = deck
+        print(f"{size:>5s} {neq_mesh:9d} mesh {os.path.basename(msh)}, decks {name}_condense_on/off[_first].dat",
               flush=True)
         if args.generate_only:
             continue
-        ref = None
-        for path in args.paths:
-            solver, _, cond = path.partition(":")
-            cond = cond.upper()
-            h5 = os.path.join(args.out, f"{name}_{solver}_{cond.lower()}.h5")
-            rc, cpu, rss = run(exe, decks[cond], h5, solver, args.timeout)
-            row = {"size": size, "dofs": neq_mesh, "path": path, "rc": rc, "cpu_s": round(cpu, 3),
-                   "peak_mb": round(rss, 1)}
-            if rc == 0:
-                r = Result(h5)
-                row["solutions"] = solutions(os.path.splitext(h5)[0] + ".log")
-                u = r.last.field("displacement")
-                if ref is None:
-                    ref = u
-                    row["max_rel_diff"] = 0.0
-                else:
-                    row["max_rel_diff"] = float(np.abs(u - ref).max() / np.abs(ref).max())
-            rows.append(row)
-            print(f"{size:>5s} {neq_mesh:9d} {path:>12s} {str(rc):>7s} {str(row.get('solutions', '-')):>9s} "
-                  f"{cpu:9.2f} {rss:9.1f} {row.get('max_rel_diff', float('nan')):12.2e}", flush=True)
+        if build:
+            lin = bench_contact(build, decks["ON"])
+            if lin:
+                lin["size"] = size
+                lin["dofs"] = neq_mesh
+                linear.append(lin)
+                print(f"{size:>5s} {neq_mesh:9d} one linear solve: factorize {lin['factorize_s']:.3f} s + solve "
+                      f"{lin['solve_s']:.4f} s (analysis {lin['analyse_s']:.3f} s); Schur set-up {lin['schur_s']:.3f} s, "
+                      f"condense {lin['condense_s']:.4f} s, expand {lin['expand_s']:.4f} s, dense Cholesky "
+                      f"{lin['dense_factorize_s']:.4f} s, in the springs' coordinates {lin['proj_factorize_s']:.4f} s",
+                      flush=True)
+        run_paths(exe, size, neq_mesh, decks, args.paths, args.out, args.timeout, rows,
+                  None if args.no_first else firsts)
+    for tag in args.spheres:
+        if args.generate_only:
+            continue
+        deck = sphere_deck(args.out, tag)
+        dofs = 2 * int(open(deck).read().split("CONTROL")[1].split("\n")[2].split()[0])
+        run_paths(exe, f"sphere_{tag}", dofs, {"ON": deck, "OFF": deck}, [q for q in args.paths if
+                  q.upper().endswith(":ON")], args.out, args.timeout, rows)
     if rows:
-        fields = ["size", "dofs", "path", "rc", "solutions", "cpu_s", "peak_mb", "max_rel_diff"]
-        with open(os.path.join(args.out, "scaling.csv"), "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=fields)
-            w.writeheader()
-            w.writerows(rows)
-        print(f"wrote {os.path.join(args.out, 'scaling.csv')}")
+        write_csv(os.path.join(args.out, "scaling.csv"), rows,
+                  ["size", "dofs", "path", "rc", "solutions", "cpu_s", "first_cpu_s", "peak_mb", "max_rel_diff"],
+                  args.append)
+    if linear:
+        write_csv(os.path.join(args.out, "linear.csv"), linear, ["size", "dofs"] + LINEAR_FIELDS, args.append)
     return 0 if all(r["rc"] == 0 for r in rows) else 1
+
+
+def write_csv(path, rows, fields, append):
+    new = not (append and os.path.exists(path))
+    with open(path, "w" if new else "a", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        if new:
+            w.writeheader()
+        w.writerows(rows)
+    print(f"wrote {path}")
+
+
+def slope(x, y):
+    """Least-squares slope of log y against log x."""
+    x, y = np.log(np.asarray(x, float)), np.log(np.asarray(y, float))
+    return float(np.polyfit(x, y, 1)[0]) if len(x) >= 2 else float("nan")
+
+
+def report(out, plot):
+    """The tables of docs/performance.md and the log-log plot, from OUT's CSV files."""
+    with open(os.path.join(out, "scaling.csv")) as f:
+        runs = list(csv.DictReader(f))
+    with open(os.path.join(out, "linear.csv")) as f:
+        lin = {r["size"]: r for r in csv.DictReader(f)}
+    sizes = [s for s in SIZES if s in lin]
+    print("| DOFs | one linear solve [s] (factorize + solve) | back-substitution [s] | Schur set-up [s] "
+          "| Schur set-up / factorize | Schur set-up / (analysis + factorize) | dense Cholesky n_c [s] "
+          "| in the springs' coordinates [s] | condense + expand [s] |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for s in sizes:
+        r = lin[s]
+        one = float(r["factorize_s"]) + float(r["solve_s"])
+        print(f"| {int(r['dofs']):,} | {one:.3f} | {float(r['solve_s']):.4f} | {float(r['schur_s']):.3f} | "
+              f"{float(r['schur_s']) / float(r['factorize_s']):.2f} | "
+              f"{float(r['schur_s']) / (float(r['analyse_s']) + float(r['factorize_s'])):.2f} | "
+              f"{float(r['dense_factorize_s']):.4f} | {float(r['proj_factorize_s']):.4f} | "
+              f"{float(r['condense_s']) + float(r['expand_s']):.4f} |")
+    print()
+    print("| DOFs | path | solutions | total CPU [s] | total / one solve | set-up + 1st increment [s] "
+          "| later increment [s] | later increment / back-substitution | peak [MB] |")
+    print("|---:|---|---:|---:|---:|---:|---:|---:|---:|")
+    series = {}
+    spheres = [r for r in runs if r["size"].startswith("sphere_")]
+    for r in runs:
+        if r["size"] not in lin or r["rc"] != "0":
+            continue
+        L = lin[r["size"]]
+        one = float(L["factorize_s"]) + float(L["solve_s"])
+        tot = float(r["cpu_s"])
+        first = float(r["first_cpu_s"]) if r.get("first_cpu_s") else float("nan")
+        later = (tot - first) / 49.0
+        print(f"| {int(r['dofs']):,} | {r['path']} | {r['solutions']} | {tot:.2f} | {tot / one:.1f} | {first:.2f} | "
+              f"{later:.3f} | {later / float(L['solve_s']):.1f} | {float(r['peak_mb']):.0f} |")
+        series.setdefault(r["path"], []).append((int(r["dofs"]), tot, first, later, float(r["peak_mb"]), one))
+    if spheres:
+        print()
+        print("| sphere | DOFs | path | solutions | total CPU [s] | peak [MB] | max |du|/|u| |")
+        print("|---|---:|---|---:|---:|---:|---:|")
+        for r in spheres:
+            print(f"| {r['size']} | {int(r['dofs']):,} | {r['path']} | {r['solutions']} | {float(r['cpu_s']):.2f} | "
+                  f"{float(r['peak_mb']):.0f} | {float(r['max_rel_diff'] or 0):.1e} |")
+    print()
+    dofs = [int(lin[s]["dofs"]) for s in sizes]
+    print("Fitted exponents (least squares of log t against log DOFs):")
+    print(f"  factorization: {slope(dofs, [float(lin[s]['factorize_s']) for s in sizes]):.2f}, "
+          f"Schur set-up: {slope(dofs, [float(lin[s]['schur_s']) for s in sizes]):.2f}, "
+          f"back-substitution: {slope(dofs, [float(lin[s]['solve_s']) for s in sizes]):.2f}")
+    for path, pts in series.items():
+        pts = [q for q in pts if q[0] >= 1e4]
+        if len(pts) >= 2:
+            d = [q[0] for q in pts]
+            print(f"  {path}: total {slope(d, [q[1] for q in pts]):.2f}, set-up + 1st increment "
+                  f"{slope(d, [q[2] for q in pts]):.2f}, later increment {slope(d, [q[3] for q in pts]):.2f}, "
+                  f"peak memory {slope(d, [q[4] for q in pts]):.2f}")
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return 0
+    fig, ax = plt.subplots(1, 2, figsize=(12, 4.8))
+    ax[0].loglog(dofs, [float(lin[s]["factorize_s"]) + float(lin[s]["solve_s"]) for s in sizes], "k--o",
+                 label="one linear solve (MUMPS)")
+    ax[0].loglog(dofs, [float(lin[s]["solve_s"]) for s in sizes], "k:o", label="one back-substitution")
+    for path, pts in sorted(series.items()):
+        d = [q[0] for q in pts]
+        ax[0].loglog(d, [q[1] for q in pts], "-o", label=f"{path}: total")
+        if path == "mumps:on":
+            ax[0].loglog(d, [q[2] for q in pts], "-s", label=f"{path}: set-up + 1st increment")
+            ax[0].loglog(d, [q[3] for q in pts], "-^", label=f"{path}: later increment")
+        ax[1].loglog(d, [q[4] for q in pts], "-o", label=path)
+    ax[0].set_xlabel("DOFs")
+    ax[0].set_ylabel("CPU time [s]")
+    ax[0].legend(fontsize=7)
+    ax[0].grid(True, which="both", alpha=0.3)
+    ax[1].set_xlabel("DOFs")
+    ax[1].set_ylabel("peak resident memory [MB]")
+    ax[1].legend(fontsize=7)
+    ax[1].grid(True, which="both", alpha=0.3)
+    fig.suptitle("Rough punch on a foundation, 1 202 contact equations, 50 increments (CPU seconds, one core)")
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(plot), exist_ok=True)
+    fig.savefig(plot, dpi=110)
+    print(f"wrote {plot}")
+    return 0
 
 
 if __name__ == "__main__":

@@ -239,7 +239,8 @@ contains
       call an%springs%init(an%map, m%contact%pairs)
       an%spacing = pair_spacing(m%contact%pairs)
       if (an%has_contact) then
-         call create_contact_system(m%condense, an%npair, size(contact_equations(an%springs%peq, an%map%neq)), an%sys)
+         call create_contact_system(m%condense, an%npair, size(contact_equations(an%springs%peq, an%map%neq)), an%sys, &
+                                    an%solver)
       else
          call create_contact_system('OFF', 0, 0, an%sys)
       end if

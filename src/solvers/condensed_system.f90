@@ -1,6 +1,6 @@
 !> The bodies condensed onto the contact equations (the fast path of
 !! DESIGN.md: "condense the bodies onto the contact DOFs once so that an
-!! increment costs a small dense LAPACK solve").
+!! increment costs a small dense LAPACK solve"), on any linear solver.
 !!
 !! B = K_AB + K_ref is factorized once: K_ref gives every pair a spring of the
 !! bodies' own stiffness scale in both directions, so that B is regular even
@@ -9,26 +9,34 @@
 !!
 !!     G = E_c^T B^-1 E_c        (n_c x n_c, n_c solves with unit vectors)
 !!
-!! turns every solve of [K_AB + K_c] dv = b, i.e. (B + dK) dv = b with
-!! dK = K_c - K_ref acting on c alone, into
+!! is inverted once into the condensed stiffness S_B = G^-1 (the Schur
+!! complement of B onto c; Cholesky, dpotrf/dpotri).  Every solve of
+!! [K_AB + K_c] dv = b, i.e. (B + dK) dv = b with dK = K_c - K_ref acting on c
+!! alone, is then
 !!
-!!     w = B^-1 b,  (I + G dK_cc) dv_c = w_c,  dv = w - B^-1 E_c dK_cc dv_c,
+!!     w = B^-1 b,  (S_B + dK_cc) dv_c = S_B w_c,  dv = w - B^-1 E_c dK_cc dv_c,
 !!
-!! a dense system of order n_c (LAPACK dgetrf/dgetrs) plus solves with the
-!! existing factorization.  The first solve of an attempt computes w = B^-1 b
-!! in full; the later ones have b on c only, so that w_c = G b_c needs no
-!! solve at all, and `solve` returns dv at the contact equations only.  The
-!! full-length increment of the attempt, the sum of its solutions,
+!! a dense symmetric system of order n_c (contact_dense: Cholesky, factorized
+!! once per set of springs, the springs added entry by entry) plus solves with
+!! the existing factorization.  The first solve of an attempt computes
+!! w = B^-1 b in full; the later ones have b on c only, so that S_B w_c = b_c
+!! needs neither a solve nor a product, and `solve` returns dv at the contact
+!! equations only.  The full-length increment of the attempt, the sum of its
+!! solutions,
 !!
 !!     sum dv = w_1 + B^-1 E_c (sum_{i>1} b_c,i - sum_i dK_cc,i dv_c,i),
 !!
-!! takes one more solve, in `recover`.  Ref: the static condensation of
-!! substructures (e.g. Bathe, Finite Element Procedures, sec. 8.2.4).
+!! takes one more solve, in `recover`; dK_cc dv_c is summed pair by pair (at
+!! most 2 nn entries a column).  (I + G dK_cc) dv_c = w_c, the system of the
+!! first version, is the same system multiplied by G: the results agree to
+!! round-off.  Ref: the static condensation of substructures (e.g. Bathe,
+!! Finite Element Procedures, sec. 8.2.4).
 module condensed_system
    use kinds, only: dp, i8
-   use errors, only: status_t, STAT_SOLVER, STAT_SINGULAR
+   use errors, only: status_t, STAT_SINGULAR
    use strings, only: itoa
    use contact_system, only: contact_system_t, contact_equations
+   use contact_dense, only: contact_dense_t
    implicit none
    private
    public :: condensed_system_t
@@ -37,15 +45,17 @@ module condensed_system
       integer :: nc = 0                      !! contact equations
       integer, allocatable :: ceq(:)         !! their global equation numbers
       integer, allocatable :: pos(:)         !! (neq) position of an equation in ceq, 0 if none
+      integer, allocatable :: ppos(:, :)     !! (nd, npair) position of each pair dof in ceq, 0 if none
       integer, allocatable :: cdof(:, :)     !! (2, ndof) (dof, node) of the nodal dofs on contact equations
       real(dp), allocatable :: kref(:, :, :) !! (nd, nd, npair) reference springs K_ref
-      real(dp), allocatable :: g(:, :)       !! flexibility G (n_c x n_c)
-      real(dp), allocatable :: kcc(:, :)     !! dK = K_c - K_ref assembled on c
+      real(dp), allocatable :: dk(:, :, :)   !! (nd, nd, npair) dK = K_c - K_ref of the current springs
+      type(contact_dense_t) :: dense         !! S_B = G^-1, and S_B + dK factorized
       ! the attempt under way
       logical :: first = .true.              !! the next solve is the attempt's first
       real(dp), allocatable :: w1(:)         !! (neq) B^-1 b of the first solve
       real(dp), allocatable :: rsum(:)       !! (n_c) sum of the later right-hand sides on c
       real(dp), allocatable :: zc(:)         !! (n_c) sum of dK_cc dv_c
+      real(dp), allocatable :: xc(:)         !! (n_c) the contact part of a solution
       real(dp), allocatable :: work(:)       !! (neq)
    contains
       procedure :: prepare => condensed_prepare
@@ -57,16 +67,33 @@ module condensed_system
       procedure :: memory_bytes => condensed_memory
    end type condensed_system_t
 
+   interface
+      subroutine dpotrf(uplo, n, a, lda, info)
+         import :: dp
+         character(len=1), intent(in) :: uplo
+         integer, intent(in) :: n, lda
+         real(dp), intent(inout) :: a(lda, *)
+         integer, intent(out) :: info
+      end subroutine dpotrf
+      subroutine dpotri(uplo, n, a, lda, info)
+         import :: dp
+         character(len=1), intent(in) :: uplo
+         integer, intent(in) :: n, lda
+         real(dp), intent(inout) :: a(lda, *)
+         integer, intent(out) :: info
+      end subroutine dpotri
+   end interface
+
 contains
 
-   !> Factorize B = K_AB + K_ref once and form the flexibility G of the
-   !! contact equations from n_c solves.
+   !> Factorize B = K_AB + K_ref once, form the flexibility G of the contact
+   !! equations from n_c solves and invert it into S_B.
    subroutine condensed_prepare(this, kref, status)
       class(condensed_system_t), intent(inout) :: this
       real(dp), intent(in) :: kref(:, :, :)
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: e(:)
-      integer :: j, k, ip, idof, n
+      integer :: j, k, ip, idof, n, info
       this%condensed = .true.
       this%kref = kref
       call this%solver%restore_base()
@@ -86,6 +113,13 @@ contains
       do k = 1, this%nc
          this%pos(this%ceq(k)) = k
       end do
+      allocate (this%ppos(size(this%peq, 1), size(this%peq, 2)))
+      this%ppos = 0
+      do j = 1, size(this%peq, 2)
+         do k = 1, size(this%peq, 1)
+            if (this%peq(k, j) > 0) this%ppos(k, j) = this%pos(this%peq(k, j))
+         end do
+      end do
       ! the nodal dofs whose equation is a contact equation (where solve answers)
       n = count(this%id > 0 .and. this%id <= this%neq)
       allocate (this%cdof(2, n))
@@ -99,50 +133,51 @@ contains
          end do
       end do
       this%cdof = this%cdof(:, 1:n)
-      allocate (this%g(this%nc, this%nc), this%kcc(this%nc, this%nc), e(this%neq))
+      call this%dense%init(this%nc, size(this%peq, 1), size(this%peq, 2))
+      allocate (e(this%neq))
       do j = 1, this%nc
          e = 0.0_dp
          e(this%ceq(j)) = 1.0_dp
          call this%solver%solve(e, status)
          if (.not. status%ok()) return
-         this%g(:, j) = e(this%ceq)
+         this%dense%s(:, j) = e(this%ceq)
       end do
-      ! symmetric in exact arithmetic: remove the round-off asymmetry
-      this%g = 0.5_dp*(this%g + transpose(this%g))
-      allocate (this%w1(this%neq), this%work(this%neq), this%rsum(this%nc), this%zc(this%nc))
+      ! G is symmetric positive definite (B is): S_B = G^-1 by Cholesky
+      if (this%nc > 0) then
+         call dpotrf('U', this%nc, this%dense%s, this%nc, info)
+         if (info == 0) call dpotri('U', this%nc, this%dense%s, this%nc, info)
+         if (info /= 0) then
+            call status%set(STAT_SINGULAR, 'condensation: the flexibility of the contact equations is not '// &
+                            'positive definite (LAPACK info '//itoa(info)//'); check the restraints')
+            return
+         end if
+         do j = 1, this%nc
+            this%dense%s(j + 1:, j) = this%dense%s(j, j + 1:)
+         end do
+      end if
+      call this%dense%prepare_projection(this%ppos, kref)
+      allocate (this%dk, mold=kref)
+      this%dk = 0.0_dp
+      allocate (this%w1(this%neq), this%work(this%neq), this%rsum(this%nc), this%zc(this%nc), this%xc(this%nc))
    end subroutine condensed_prepare
 
-   !> dK = K_c - K_ref on the contact equations (every pair's positive
-   !! equations are contact equations).
+   !> S_B + dK, dK = K_c - K_ref on the contact equations (every pair's
+   !! positive equations are contact equations), factorized; a singular
+   !! system is reported here, with its contact equation.
    subroutine condensed_set_springs(this, kc, status)
       class(condensed_system_t), intent(inout) :: this
       real(dp), intent(in) :: kc(:, :, :)
       type(status_t), intent(inout) :: status
-      integer :: j
-      this%kcc = 0.0_dp
-      do j = 1, size(this%peq, 2)
-         call add_spring(this, this%peq(:, j), kc(:, :, j) - this%kref(:, :, j))
-      end do
-      associate (unused => status)
-      end associate
+      this%bad_eq = 0
+      this%dk = kc - this%kref
+      call this%dense%set_springs(this%ppos, this%dk, status)
+      if (.not. status%ok()) return
+      if (this%dense%bad > 0) then
+         this%bad_eq = this%ceq(this%dense%bad)
+         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%bad_eq)// &
+                         ' of the condensed contact system')
+      end if
    end subroutine condensed_set_springs
-
-   !> Add a spring matrix with global equations ieq (<= 0 skipped).
-   subroutine add_spring(this, ieq, ke)
-      class(condensed_system_t), intent(inout) :: this
-      integer, intent(in) :: ieq(:)
-      real(dp), intent(in) :: ke(:, :)
-      integer :: a, b, pa, pb
-      do b = 1, size(ieq)
-         if (ieq(b) <= 0) cycle
-         pb = this%pos(ieq(b))
-         do a = 1, size(ieq)
-            if (ieq(a) <= 0) cycle
-            pa = this%pos(ieq(a))
-            this%kcc(pa, pb) = this%kcc(pa, pb) + ke(a, b)
-         end do
-      end do
-   end subroutine add_spring
 
    !> A new attempt: the deferred correction starts from zero.
    subroutine condensed_begin_attempt(this)
@@ -158,26 +193,39 @@ contains
       real(dp), intent(inout) :: b(:)
       real(dp), intent(inout) :: du(:, :)
       type(status_t), intent(inout) :: status
-      real(dp), allocatable :: wc(:), dvc(:)
-      integer :: k
-      this%bad_eq = 0
-      allocate (wc(this%nc), dvc(this%nc))
+      integer :: k, j, a, c
       if (this%first) then
          this%w1 = b
          call this%solver%solve(this%w1, status)
          if (.not. status%ok()) return
-         wc = this%w1(this%ceq)
+         ! S_B w_c: the dense product, once per attempt
+         this%xc = matmul(this%dense%s, this%w1(this%ceq))
          this%first = .false.
       else
-         ! b is zero off the contact equations: w_c = G b_c
-         wc = matmul(this%g, b(this%ceq))
-         this%rsum = this%rsum + b(this%ceq)
+         ! b is zero off the contact equations: S_B w_c = S_B G b_c = b_c
+         this%xc = b(this%ceq)
+         this%rsum = this%rsum + this%xc
       end if
-      call solve_c(this, wc, dvc, status)
+      call this%dense%solve(this%xc, status)
       if (.not. status%ok()) return
-      this%zc = this%zc + matmul(this%kcc, dvc)
+      if (this%dense%bad > 0) then
+         this%bad_eq = this%ceq(this%dense%bad)
+         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%bad_eq)// &
+                         ' of the condensed contact system')
+         return
+      end if
+      ! zc += dK_cc dv_c, pair by pair
+      do j = 1, size(this%ppos, 2)
+         do c = 1, size(this%ppos, 1)
+            if (this%ppos(c, j) <= 0) cycle
+            do a = 1, size(this%ppos, 1)
+               if (this%ppos(a, j) <= 0) cycle
+               this%zc(this%ppos(a, j)) = this%zc(this%ppos(a, j)) + this%dk(a, c, j)*this%xc(this%ppos(c, j))
+            end do
+         end do
+      end do
       do k = 1, size(this%cdof, 2)
-         du(this%cdof(1, k), this%cdof(2, k)) = dvc(this%pos(this%id(this%cdof(1, k), this%cdof(2, k))))
+         du(this%cdof(1, k), this%cdof(2, k)) = this%xc(this%pos(this%id(this%cdof(1, k), this%cdof(2, k))))
       end do
    end subroutine condensed_solve
 
@@ -202,66 +250,6 @@ contains
       end do
    end subroutine condensed_recover
 
-   !> Solve (I + G dK_cc) x = wc for the contact part of a solution (LAPACK
-   !! dgetrf/dgetrs).  A pivot below 1e-12 of its column's largest original
-   !! entry means a singular system (e.g. a body whose springs all opened),
-   !! reported like the skyline solver's zero pivots, with its equation in
-   !! bad_eq.
-   subroutine solve_c(this, wc, x, status)
-      class(condensed_system_t), intent(inout) :: this
-      real(dp), intent(in) :: wc(:)
-      real(dp), intent(out) :: x(:)
-      type(status_t), intent(inout) :: status
-      real(dp), allocatable :: a(:, :), b(:, :), colmax(:)
-      integer, allocatable :: ipiv(:)
-      integer :: info, k
-      interface
-         subroutine dgetrf(m, n, a, lda, ipiv, info)
-            import :: dp
-            integer, intent(in) :: m, n, lda
-            real(dp), intent(inout) :: a(lda, *)
-            integer, intent(out) :: ipiv(*), info
-         end subroutine dgetrf
-         subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
-            import :: dp
-            character(len=1), intent(in) :: trans
-            integer, intent(in) :: n, nrhs, lda, ldb
-            real(dp), intent(in) :: a(lda, *)
-            integer, intent(in) :: ipiv(*)
-            real(dp), intent(inout) :: b(ldb, *)
-            integer, intent(out) :: info
-         end subroutine dgetrs
-      end interface
-      x = 0.0_dp
-      if (this%nc == 0) return
-      a = matmul(this%g, this%kcc)
-      do k = 1, this%nc
-         a(k, k) = a(k, k) + 1.0_dp
-      end do
-      colmax = maxval(abs(a), dim=1)
-      allocate (b(this%nc, 1), ipiv(this%nc))
-      call dgetrf(this%nc, this%nc, a, this%nc, ipiv, info)
-      if (info < 0) then
-         call status%set(STAT_SOLVER, 'LAPACK dgetrf: illegal argument '//itoa(-info))
-         return
-      end if
-      do k = 1, this%nc
-         if (abs(a(k, k)) <= 1.0e-12_dp*colmax(k)) then
-            this%bad_eq = this%ceq(k)
-            call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%ceq(k))// &
-                            ' of the condensed contact system')
-            return
-         end if
-      end do
-      b(:, 1) = wc
-      call dgetrs('N', this%nc, 1, a, this%nc, ipiv, b, this%nc, info)
-      if (info /= 0) then
-         call status%set(STAT_SOLVER, 'LAPACK dgetrs: illegal argument '//itoa(-info))
-         return
-      end if
-      x = b(:, 1)
-   end subroutine solve_c
-
    function condensed_describe(this) result(s)
       class(condensed_system_t), intent(in) :: this
       character(len=:), allocatable :: s
@@ -269,11 +257,12 @@ contains
           ' contact equations (one factorization of the bodies)'
    end function condensed_describe
 
-   !> G, dK_cc and the dense matrix of a solve, and the vectors of an attempt.
+   !> S_B and the factors of the contact equations, the springs, and the
+   !! vectors of an attempt.
    pure function condensed_memory(this) result(bytes)
       class(condensed_system_t), intent(in) :: this
       integer(i8) :: bytes
-      bytes = (3_i8*int(this%nc, i8)**2 + 2_i8*int(this%neq, i8) + 2_i8*int(this%nc, i8))*8_i8
-      if (allocated(this%kref)) bytes = bytes + storage_size(this%kref, i8)/8*size(this%kref, kind=i8)
+      bytes = this%dense%memory_bytes() + (2_i8*int(this%neq, i8) + 3_i8*int(this%nc, i8))*8_i8
+      if (allocated(this%kref)) bytes = bytes + 2_i8*storage_size(this%kref, i8)/8*size(this%kref, kind=i8)
    end function condensed_memory
 end module condensed_system

@@ -1,12 +1,20 @@
 # Run one deck with the skyline solver and each of the sparse solvers of the
 # build (SOLVERS: umfpack, mumps) and compare the displacements of each with
-# the skyline's (compare_results.py, relative 1e-10).  When GEO is given, the
+# the skyline's (compare_results.py, relative 1e-10).  The deck's own OPTIONS
+# CONDENSE (AUTO by default) takes, for a contact deck, the condensation by
+# solves with skyline and UMFPACK and the Schur complement of MUMPS's
+# factorization with MUMPS; a contact deck of at most 10 000 equations is
+# therefore run with MUMPS once more with CONDENSE OFF (the whole system
+# factorized at every solution, the deck copied with the option added), so
+# that every contact system is compared with the skyline run (on the larger
+# decks the refactorizations would add minutes to the suite).  When GEO is given, the
 # deck and its .geo are copied to WORK and the .msh is made there with gmsh
 # first, so that nothing is generated in the source tree.  With CHECK_TOOL the
 # skyline result is also compared with the expected values of <deck>.check
 # beside the deck (for the decks that no run_good_deck.cmake test runs).
 #   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCOMPARE=... -DSOLVERS=umfpack,mumps
 #         [-DGEO=... -DGMSH=...] [-DCHECK_TOOL=...] -P run_solver_agreement.cmake
+cmake_policy(SET CMP0057 NEW)   # if(... IN_LIST ...)
 string(REPLACE "," ";" SOLVERS "${SOLVERS}")
 get_filename_component(name "${DECK}" NAME_WE)
 set(dir "${WORK}/${name}")
@@ -34,6 +42,36 @@ foreach(solver skyline ${SOLVERS})
     message(FATAL_ERROR "kontakt2d -s ${solver} failed (${rc}):\n${out}\n${err}")
   endif()
 endforeach()
+# MUMPS with CONDENSE OFF for a contact deck: the OPTIONS block gets the card
+# (any CONDENSE card of the deck replaced), or one is added after CONTROL's card
+file(READ "${deck}" text)
+file(READ "${dir}/${name}_skyline.lis" listing)
+set(neq 0)
+if(listing MATCHES "Equations +: +([0-9]+)")
+  set(neq "${CMAKE_MATCH_1}")
+endif()
+if("mumps" IN_LIST SOLVERS AND text MATCHES "\nCONTACT[ ]*\n" AND neq LESS_EQUAL 10000)
+  string(REGEX REPLACE "\nCONDENSE[^\n]*" "" text "${text}")
+  if(text MATCHES "\nOPTIONS[ ]*\n")
+    string(REGEX REPLACE "\nOPTIONS[ ]*\n" "\nOPTIONS\nCONDENSE  OFF\n" text "${text}")
+  else()
+    string(REGEX REPLACE "\nCONTROL[ ]*\n((#[^\n]*\n)*)([^\n]*\n)" "\nCONTROL\n\\1\\3OPTIONS\nCONDENSE  OFF\n"
+           text "${text}")
+  endif()
+  if(NOT text MATCHES "\nCONDENSE  OFF\n")
+    message(FATAL_ERROR "could not add CONDENSE OFF to ${deck}")
+  endif()
+  # beside the run's other files (a gmsh deck was copied there with its mesh)
+  set(off_deck "${dir}/${name}_condense_off.dat")
+  file(WRITE "${off_deck}" "${text}")
+  execute_process(COMMAND "${EXE}" "${off_deck}" -q -s mumps -o "${dir}/${name}_mumps_off.h5"
+                  -l "${dir}/${name}_mumps_off.lis"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc STREQUAL "0")
+    message(FATAL_ERROR "kontakt2d -s mumps with CONDENSE OFF failed (${rc}):\n${out}\n${err}")
+  endif()
+  list(APPEND SOLVERS mumps_off)
+endif()
 foreach(solver ${SOLVERS})
   execute_process(COMMAND "${PYTHON}" "${COMPARE}" "${dir}/${name}_skyline.h5" "${dir}/${name}_${solver}.h5"
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

@@ -1,0 +1,330 @@
+!> The dense system of the contact equations solved in the springs' own
+!! coordinates (for contact_dense).
+!!
+!! A pair's spring acts on the relative displacement of its nodes only: its
+!! matrix K_c,j (nd x nd) has rank 2 (normal and tangent) whatever nd, and so
+!! have the reference springs K_ref,j, in the same directions.  With Q_j an
+!! orthonormal basis of the range of K_ref,j (eigenvectors, LAPACK dsyev) and
+!! U the n_c x r matrix of all pairs' Q_j (r = sum of the ranks, about n_c/2),
+!! every set of springs is K_c - K_ref = U D U^T with D block diagonal
+!! (D_j = Q_j^T (K_c,j - K_ref,j) Q_j), checked pair by pair: a spring matrix
+!! outside the range of its reference springs (by more than 1e-12 of their
+!! scale), or stiffer than 1e4 times them (penalty springs, where the formula
+!! below would lose digits), leaves the system to the direct factorization of
+!! contact_dense.
+!! With S fixed, Woodbury's identity in the form that needs no inverse of D
+!! (D is zero for a pair whose springs equal the reference ones),
+!!
+!!     (S + U D U^T)^-1 g = y - V (t - z),   y = S^-1 g,  t = U^T y,
+!!     V = S^-1 U F^-1,  F = U^T S^-1 U,     (F^-1 + D) z = F^-1 t,
+!!
+!! turns a new set of springs into a Cholesky factorization of the r x r
+!! matrix F^-1 + D (r^3/3 flops against n_c^3/3, about 8 times fewer), and a
+!! solve into two triangular solves with S's factor, two with that of
+!! F^-1 + D and two products (S's factor, V and F^-1 are computed once).
+!! F^-1 + D is singular exactly when S + K_c is (det(S + U D U^T) =
+!! det S det F det(F^-1 + D)); a pivot of its Cholesky factor with
+!! l_kk^2 <= 1e-12 c_kk, or a failed factorization, leaves the decision, and
+!! the report of the singular equation, to the direct factorization.
+!!
+!! Ref: W. W. Hager, "Updating the inverse of a matrix", SIAM Review 31
+!!      (1989) 221-239 (the Sherman-Morrison-Woodbury formula); LAPACK Users'
+!!      Guide, 3rd ed. (1999), dsyev, dpotrf/dpotrs/dpotri, dgemm, dgemv.
+module contact_projection
+   use kinds, only: dp, i8
+   implicit none
+   private
+   public :: contact_projection_t
+
+   !> Relative size below which an eigenvalue of K_ref,j is zero.
+   real(dp), parameter :: RANK_TOL = 1.0e-10_dp
+   !> Largest part of a spring matrix outside the range of its reference
+   !! springs, relative to their scale.
+   real(dp), parameter :: RANGE_TOL = 1.0e-12_dp
+   !> Relative pivot threshold of F^-1 + D (the skyline solver's).
+   real(dp), parameter :: PIVOT_TOL = 1.0e-12_dp
+   !> The coordinates are used when r <= MAX_SHARE n_c.
+   real(dp), parameter :: MAX_SHARE = 0.6_dp
+   !> Largest entry of D_j, relative to the scale of the reference springs,
+   !! taken in the coordinates.  Woodbury's x = y - V (t - z) cancels: the
+   !! error of the springs' relative displacements grows like eps |D|/|F^-1|,
+   !! and so does that of their forces relative to the load (measured: the
+   !! penalty springs of ideal contact, 1e8 times stiffer than the bodies,
+   !! left the bodies out of equilibrium by 1.5e-7 of the load).  1e4 keeps
+   !! it near 1e-12; stiffer springs go to the direct factorization, which is
+   !! backward stable for them.
+   real(dp), parameter :: MAX_STIFFNESS_RATIO = 1.0e4_dp
+
+   type :: contact_projection_t
+      logical :: ready = .false.               !! set up, and worth using
+      integer :: n = 0                         !! contact equations
+      integer :: r = 0                         !! spring coordinates
+      integer, allocatable :: qoff(:)          !! (npair) offset of a pair's coordinates
+      integer, allocatable :: qrank(:)         !! (npair) their number
+      real(dp), allocatable :: q(:, :, :)      !! (nd, nd, npair) columns 1:qrank: Q_j
+      real(dp), allocatable :: kscale(:)       !! (npair) largest entry of K_ref,j
+      real(dp), allocatable :: ls(:, :)        !! (n, n) Cholesky factor of S (upper)
+      real(dp), allocatable :: v(:, :)         !! (n, r) S^-1 U F^-1
+      real(dp), allocatable :: finv(:, :)      !! (r, r) F^-1
+      real(dp), allocatable :: c(:, :)         !! (r, r) F^-1 + D, then its factor
+      real(dp), allocatable :: cdiag(:)        !! (r) its diagonal
+      real(dp), allocatable :: t(:), z(:)      !! (r) work
+      real(dp), allocatable :: d(:, :)         !! (nd, nd) work: D_j
+      integer :: factorizations = 0            !! factorizations of F^-1 + D so far
+   contains
+      procedure :: setup => projection_setup
+      procedure :: set_springs => projection_set_springs
+      procedure :: solve => projection_solve
+      procedure :: memory_bytes => projection_memory
+   end type contact_projection_t
+
+   interface
+      subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
+         import :: dp
+         character(len=1), intent(in) :: jobz, uplo
+         integer, intent(in) :: n, lda, lwork
+         real(dp), intent(inout) :: a(lda, *)
+         real(dp), intent(out) :: w(*), work(*)
+         integer, intent(out) :: info
+      end subroutine dsyev
+      subroutine dpotrf(uplo, n, a, lda, info)
+         import :: dp
+         character(len=1), intent(in) :: uplo
+         integer, intent(in) :: n, lda
+         real(dp), intent(inout) :: a(lda, *)
+         integer, intent(out) :: info
+      end subroutine dpotrf
+      subroutine dpotri(uplo, n, a, lda, info)
+         import :: dp
+         character(len=1), intent(in) :: uplo
+         integer, intent(in) :: n, lda
+         real(dp), intent(inout) :: a(lda, *)
+         integer, intent(out) :: info
+      end subroutine dpotri
+      subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
+         import :: dp
+         character(len=1), intent(in) :: uplo
+         integer, intent(in) :: n, nrhs, lda, ldb
+         real(dp), intent(in) :: a(lda, *)
+         real(dp), intent(inout) :: b(ldb, *)
+         integer, intent(out) :: info
+      end subroutine dpotrs
+      subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
+         import :: dp
+         character(len=1), intent(in) :: transa, transb
+         integer, intent(in) :: m, n, k, lda, ldb, ldc
+         real(dp), intent(in) :: alpha, beta, a(lda, *), b(ldb, *)
+         real(dp), intent(inout) :: c(ldc, *)
+      end subroutine dgemm
+      subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+         import :: dp
+         character(len=1), intent(in) :: trans
+         integer, intent(in) :: m, n, lda, incx, incy
+         real(dp), intent(in) :: alpha, beta, a(lda, *), x(*)
+         real(dp), intent(inout) :: y(*)
+      end subroutine dgemv
+   end interface
+
+contains
+
+   !> The springs' coordinates of the pairs (from the reference springs) and
+   !! the fixed matrices of S; `ready` stays false when they would not pay
+   !! or S is not positive definite.
+   subroutine projection_setup(this, s, ppos, kref)
+      class(contact_projection_t), intent(inout) :: this
+      real(dp), intent(in) :: s(:, :)              !! (n, n) S, symmetric
+      integer, intent(in) :: ppos(:, :)            !! (nd, npair) positions of the pairs' dofs
+      real(dp), intent(in) :: kref(:, :, :)        !! (nd, nd, npair) reference springs
+      real(dp), allocatable :: w(:, :), f(:, :)
+      integer :: j, k, a, nd, np, info, col
+      this%ready = .false.
+      if (allocated(this%qoff)) deallocate (this%qoff, this%qrank, this%q, this%kscale, this%d)
+      if (allocated(this%ls)) deallocate (this%ls)
+      if (allocated(this%v)) deallocate (this%v)
+      if (allocated(this%finv)) deallocate (this%finv)
+      if (allocated(this%c)) deallocate (this%c, this%cdiag, this%t, this%z)
+      this%n = size(s, 1)
+      nd = size(ppos, 1)
+      np = size(ppos, 2)
+      allocate (this%qoff(np), this%qrank(np), this%q(nd, nd, np), this%kscale(np), this%d(nd, nd))
+      call pair_bases(ppos, kref, this%q, this%qrank, this%kscale, info)
+      if (info /= 0) return
+      this%r = 0
+      do j = 1, np
+         this%qoff(j) = this%r
+         this%r = this%r + this%qrank(j)
+      end do
+      if (this%r < 1 .or. real(this%r, dp) > MAX_SHARE*this%n) return
+      this%ls = s
+      call dpotrf('U', this%n, this%ls, this%n, info)
+      if (info /= 0) return
+      ! W = S^-1 U, F = U^T W
+      allocate (w(this%n, this%r), f(this%r, this%r))
+      w = 0.0_dp
+      do j = 1, np
+         do k = 1, this%qrank(j)
+            do a = 1, nd
+               if (ppos(a, j) > 0) w(ppos(a, j), this%qoff(j) + k) = this%q(a, k, j)
+            end do
+         end do
+      end do
+      call dpotrs('U', this%n, this%r, this%ls, this%n, w, this%n, info)
+      if (info /= 0) return
+      f = 0.0_dp
+      do j = 1, np
+         do k = 1, this%qrank(j)
+            do a = 1, nd
+               if (ppos(a, j) <= 0) cycle
+               do col = 1, this%r
+                  f(this%qoff(j) + k, col) = f(this%qoff(j) + k, col) + this%q(a, k, j)*w(ppos(a, j), col)
+               end do
+            end do
+         end do
+      end do
+      f = 0.5_dp*(f + transpose(f))
+      call dpotrf('U', this%r, f, this%r, info)
+      if (info == 0) call dpotri('U', this%r, f, this%r, info)
+      if (info /= 0) return
+      do col = 1, this%r
+         f(col + 1:, col) = f(col, col + 1:)
+      end do
+      call move_alloc(f, this%finv)
+      allocate (this%v(this%n, this%r))
+      call dgemm('N', 'N', this%n, this%r, this%r, 1.0_dp, w, this%n, this%finv, this%r, 0.0_dp, this%v, this%n)
+      allocate (this%c(this%r, this%r), this%cdiag(this%r), this%t(this%r), this%z(this%r))
+      this%ready = .true.
+   end subroutine projection_setup
+
+   !> Q_j, an orthonormal basis of the range of each pair's reference springs
+   !! on its valid dofs, and their scale; info /= 0 if LAPACK fails.
+   subroutine pair_bases(ppos, kref, q, qrank, kscale, info)
+      integer, intent(in) :: ppos(:, :)
+      real(dp), intent(in) :: kref(:, :, :)
+      real(dp), intent(out) :: q(:, :, :), kscale(:)
+      integer, intent(out) :: qrank(:), info
+      real(dp) :: a(size(ppos, 1), size(ppos, 1)), ev(size(ppos, 1)), work(4*size(ppos, 1))
+      integer :: idx(size(ppos, 1)), j, m, k, nd
+      nd = size(ppos, 1)
+      q = 0.0_dp
+      qrank = 0
+      kscale = 0.0_dp
+      info = 0
+      do j = 1, size(ppos, 2)
+         m = 0
+         do k = 1, nd
+            if (ppos(k, j) > 0) then
+               m = m + 1
+               idx(m) = k
+            end if
+         end do
+         if (m == 0) cycle
+         a(1:m, 1:m) = kref(idx(1:m), idx(1:m), j)
+         kscale(j) = maxval(abs(a(1:m, 1:m)))
+         if (.not. kscale(j) > 0.0_dp) cycle
+         call dsyev('V', 'U', m, a, nd, ev, work, size(work), info)
+         if (info /= 0) return
+         do k = 1, m
+            if (ev(k) > RANK_TOL*maxval(abs(ev(1:m)))) then
+               qrank(j) = qrank(j) + 1
+               q(idx(1:m), qrank(j), j) = a(1:m, k)
+            end if
+         end do
+      end do
+   end subroutine pair_bases
+
+   !> F^-1 + D for the springs kc (in the order of the pairs), factorized;
+   !! done = .false. when a spring matrix leaves its reference springs' range
+   !! or F^-1 + D is not clearly positive definite (the caller factorizes
+   !! directly).
+   subroutine projection_set_springs(this, ppos, kc, done)
+      class(contact_projection_t), intent(inout) :: this
+      integer, intent(in) :: ppos(:, :)
+      real(dp), intent(in) :: kc(:, :, :)
+      logical, intent(out) :: done
+      integer :: j, k, l, a, b, nd, rk, o, info
+      real(dp) :: recon
+      done = .false.
+      if (.not. this%ready) return
+      nd = size(ppos, 1)
+      this%c = this%finv
+      do j = 1, size(ppos, 2)
+         rk = this%qrank(j)
+         o = this%qoff(j)
+         ! D_j = Q_j^T kc_j Q_j on the valid dofs
+         do l = 1, rk
+            do k = 1, rk
+               this%d(k, l) = 0.0_dp
+               do b = 1, nd
+                  if (ppos(b, j) <= 0) cycle
+                  do a = 1, nd
+                     if (ppos(a, j) <= 0) cycle
+                     this%d(k, l) = this%d(k, l) + this%q(a, k, j)*kc(a, b, j)*this%q(b, l, j)
+                  end do
+               end do
+            end do
+         end do
+         if (rk > 0) then
+            if (.not. maxval(abs(this%d(1:rk, 1:rk))) <= MAX_STIFFNESS_RATIO*this%kscale(j)) return
+         end if
+         ! kc_j = Q_j D_j Q_j^T, or the coordinates do not hold it
+         do b = 1, nd
+            if (ppos(b, j) <= 0) cycle
+            do a = 1, nd
+               if (ppos(a, j) <= 0) cycle
+               recon = 0.0_dp
+               do l = 1, rk
+                  do k = 1, rk
+                     recon = recon + this%q(a, k, j)*this%d(k, l)*this%q(b, l, j)
+                  end do
+               end do
+               if (.not. abs(kc(a, b, j) - recon) <= RANGE_TOL*(this%kscale(j) + abs(kc(a, b, j)))) return
+            end do
+         end do
+         this%c(o + 1:o + rk, o + 1:o + rk) = this%c(o + 1:o + rk, o + 1:o + rk) + this%d(1:rk, 1:rk)
+      end do
+      do k = 1, this%r
+         this%cdiag(k) = this%c(k, k)
+      end do
+      call dpotrf('U', this%r, this%c, this%r, info)
+      if (info /= 0) return
+      do k = 1, this%r
+         if (this%c(k, k)**2 <= PIVOT_TOL*this%cdiag(k)) return
+      end do
+      this%factorizations = this%factorizations + 1
+      done = .true.
+   end subroutine projection_set_springs
+
+   !> x = (S + K_c)^-1 x with the factors of the last set_springs.
+   subroutine projection_solve(this, ppos, x)
+      class(contact_projection_t), intent(inout) :: this
+      integer, intent(in) :: ppos(:, :)
+      real(dp), intent(inout) :: x(:)            !! (n), contiguous
+      integer :: j, k, a, info
+      call dpotrs('U', this%n, 1, this%ls, this%n, x, this%n, info)
+      ! t = U^T y
+      do j = 1, size(ppos, 2)
+         do k = 1, this%qrank(j)
+            this%t(this%qoff(j) + k) = 0.0_dp
+            do a = 1, size(ppos, 1)
+               if (ppos(a, j) > 0) this%t(this%qoff(j) + k) = this%t(this%qoff(j) + k) + this%q(a, k, j)*x(ppos(a, j))
+            end do
+         end do
+      end do
+      ! z = (F^-1 + D)^-1 F^-1 t;  x = y - V (t - z)
+      call dgemv('N', this%r, this%r, 1.0_dp, this%finv, this%r, this%t, 1, 0.0_dp, this%z, 1)
+      call dpotrs('U', this%r, 1, this%c, this%r, this%z, this%r, info)
+      this%t = this%t - this%z
+      call dgemv('N', this%n, this%r, -1.0_dp, this%v, this%n, this%t, 1, 1.0_dp, x, 1)
+   end subroutine projection_solve
+
+   !> S's factor, V, F^-1, F^-1 + D and the bases [bytes].
+   pure integer(i8) function projection_memory(this) result(bytes)
+      class(contact_projection_t), intent(in) :: this
+      bytes = 0
+      if (allocated(this%ls)) bytes = bytes + 8_i8*size(this%ls, kind=i8)
+      if (allocated(this%v)) bytes = bytes + 8_i8*size(this%v, kind=i8)
+      if (allocated(this%finv)) bytes = bytes + 8_i8*size(this%finv, kind=i8)
+      if (allocated(this%c)) bytes = bytes + 8_i8*size(this%c, kind=i8)
+      if (allocated(this%q)) bytes = bytes + 8_i8*size(this%q, kind=i8)
+   end function projection_memory
+end module contact_projection

@@ -1,0 +1,119 @@
+!> Contact system from the deck's choice (OPTIONS CONDENSE) and the solver,
+!! chosen once.
+!!
+!! The one place that knows the concrete contact systems: the driver holds
+!! the result as class(contact_system_t).  A new way of solving the contact
+!! system is a new type extending contact_system_t and one more case here.
+!!
+!! The choice (measured crossovers: docs/performance.md, "Automatic choice"):
+!! * without contact, or CONDENSE OFF: the full system (refactorize K_AB + K_c
+!!   for every new set of springs);
+!! * with the MUMPS solver, CONDENSE ON: the Schur complement from MUMPS's
+!!   factorization (mumps_schur_system), one sparse factorization for the
+!!   whole run; AUTO takes it when its work per new set of springs, a dense
+!!   Cholesky factorization of the n_c contact equations, costs no more than
+!!   the full system's, a sparse factorization of the neq equations
+!!   (`schur_pays`), else the full system;
+!! * with another solver, CONDENSE ON, or AUTO up to
+!!   AUTO_MAX_CONTACT_EQUATIONS contact equations: the condensation by n_c
+!!   solves (condensed_system).
+!! AUTO never condenses beyond AUTO_MAX_CONTACT_EQUATIONS (the dense system of
+!! the contact equations grows as n_c^2 in memory, n_c^3 in work per set of
+!! springs), and the Schur complement needs at least one equation off the
+!! contact equations (ON falls back to the condensation by solves).
+!!
+!! This file is preprocessed (.F90): the MUMPS system is compiled only when
+!! CMake defines KONTAKT2D_HAVE_MUMPS.
+module contact_system_factory
+   use kinds, only: dp
+   use strings, only: upper
+   use linear_solver, only: linear_solver_t
+   use contact_system, only: contact_system_t
+   use full_system, only: full_system_t
+   use condensed_system, only: condensed_system_t
+#ifdef KONTAKT2D_HAVE_MUMPS
+   use mumps_solver, only: mumps_solver_t
+   use mumps_schur_system, only: mumps_schur_system_t
+#endif
+   implicit none
+   private
+   public :: create_contact_system, schur_pays, AUTO_MAX_CONTACT_EQUATIONS
+
+   !> CONDENSE AUTO condenses up to this many contact equations (the dense
+   !! system of the contact equations grows as n_c^2 in memory, n_c^3 in work).
+   integer, parameter :: AUTO_MAX_CONTACT_EQUATIONS = 1500
+
+   !> The measured costs behind `schur_pays` (docs/performance.md, "Automatic
+   !! choice"; CPU seconds, one core, OpenBLAS): one MUMPS factorization of
+   !! the punch-on-foundation meshes takes T_SPARSE (neq/1e4)^SPARSE_EXPONENT
+   !! (1e4 to 1e6 equations) and its solve about SOLVE_SHARE of that; a new
+   !! set of springs on n_c contact equations and a solve with them, in the
+   !! springs' own coordinates (contact_projection) with one refinement step,
+   !! T_DENSE (n_c/1202)^3 (3.5 ms + 3 x 1.5 ms at 1 202).
+   real(dp), parameter :: T_SPARSE = 0.016_dp, SPARSE_EXPONENT = 1.24_dp, SOLVE_SHARE = 0.2_dp, &
+                          T_DENSE = 0.008_dp
+
+   !> Kinds of contact system.
+   integer, parameter :: FULL = 0, CONDENSED = 1, SCHUR = 2
+
+contains
+
+   !> The contact system for OPTIONS CONDENSE `condense` (ON, OFF or AUTO,
+   !! case-insensitive; anything else is AUTO) and the bodies' solver (when
+   !! given: the MUMPS solver condenses through its Schur complement).
+   subroutine create_contact_system(condense, npair, nc, sys, solver)
+      character(len=*), intent(in) :: condense
+      integer, intent(in) :: npair            !! contact pairs
+      integer, intent(in) :: nc               !! contact equations (distinct free equations of the pairs)
+      class(contact_system_t), allocatable, intent(out) :: sys
+      class(linear_solver_t), intent(in), optional :: solver   !! the bodies' solver, analysed (neq known)
+      integer :: kind, neq
+      logical :: mumps
+      mumps = .false.
+      neq = 0
+#ifdef KONTAKT2D_HAVE_MUMPS
+      if (present(solver)) then
+         neq = solver%neq
+         select type (solver)
+         type is (mumps_solver_t)
+            mumps = nc > 0 .and. nc < solver%neq
+         end select
+      end if
+#endif
+      kind = FULL
+      if (npair > 0) then
+         select case (upper(trim(adjustl(condense))))
+         case ('ON')
+            kind = merge(SCHUR, CONDENSED, mumps)
+         case ('OFF')
+            kind = FULL
+         case default
+            if (nc <= AUTO_MAX_CONTACT_EQUATIONS) then
+               kind = CONDENSED
+               if (mumps) kind = merge(SCHUR, FULL, schur_pays(neq, nc))
+            end if
+         end select
+      end if
+      select case (kind)
+#ifdef KONTAKT2D_HAVE_MUMPS
+      case (SCHUR)
+         allocate (mumps_schur_system_t :: sys)
+#endif
+      case (CONDENSED)
+         allocate (condensed_system_t :: sys)
+      case default
+         allocate (full_system_t :: sys)
+      end select
+   end subroutine create_contact_system
+
+   !> Does the Schur complement pay for a model of neq equations, nc of them
+   !! contact equations?  Both it and the full system factorize once per new
+   !! set of springs and solve, densely on the nc contact equations or
+   !! sparsely on all neq: the Schur complement when the dense work costs no
+   !! more than the sparse factorization and solve.
+   pure logical function schur_pays(neq, nc)
+      integer, intent(in) :: neq, nc
+      schur_pays = T_DENSE*(real(nc, dp)/1202.0_dp)**3 <= &
+                   (1.0_dp + SOLVE_SHARE)*T_SPARSE*(real(neq, dp)/1.0e4_dp)**SPARSE_EXPONENT
+   end function schur_pays
+end module contact_system_factory

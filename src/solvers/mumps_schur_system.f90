@@ -1,0 +1,260 @@
+!> The contact system from one sparse factorization: MUMPS eliminates every
+!! equation but the n_c contact equations c and returns their dense Schur
+!! complement
+!!
+!!     S = K_cc - K_cb K_bb^-1 K_bc          (K = K_AB, b = the other equations)
+!!
+!! from the factorization itself (mumps_solver%factorize_schur), so that the
+!! bodies are condensed onto the contact equations for the cost of about one
+!! factorization, not of n_c solves.  The springs act on c alone, so every
+!! solve of [K_AB + K_c] dv = b is
+!!
+!!     g = b_c - K_cb K_bb^-1 b_b            (condensation, MUMPS ICNTL(26) = 1)
+!!     (S + K_c) dv_c = g                    (contact_dense: Cholesky per set of springs)
+!!     dv_b = K_bb^-1 (b_b - K_bc dv_c)      (expansion, MUMPS ICNTL(26) = 2)
+!!
+!! Only K_bb is factorized: it is regular whenever the model is regular with
+!! reference springs, because its equations are those of the bodies with
+!! every contact dof held.  The reference springs of the other systems
+!! (K_ref, on the contact equations alone) are added to K_AB all the same,
+!! so that every diagonal is positive for MUMPS's scaling and singularity
+!! test (a rigid body's reference node has stiffness from springs only):
+!! MUMPS returns S_ref = S + K_ref, and the springs go in as K_c - K_ref,
+!! exactly as in the condensation by solves.  The first solve of
+!! an attempt condenses its right-hand side; the later ones have b on c only
+!! (out-of-balance spring forces), where g = b_c: they cost two dense
+!! triangular solves.  The increment of the attempt away from c is, since
+!! only the first right-hand side has a part on b,
+!!
+!!     sum dv_b = K_bb^-1 (b_1,b - K_bc sum dv_c),
+!!
+!! one expansion of the condensation kept by MUMPS from the first solve:
+!! `recover` costs one reduced back-substitution.  With need_full = .false.
+!! even that is postponed: the first right-hand sides and the contact
+!! solutions of the postponed steps are summed (the equations are linear) and
+!! the next recover with need_full = .true. condenses their sum and expands
+!! it once, giving the dofs away from c the postponed increments too; the
+!! contact dofs are exact after every solve in any case.
+!!
+!! Ref: MUMPS 5.5 Users' guide, sec. 5.15 (Schur complement, reduced
+!!      right-hand side, ICNTL(19), ICNTL(26)); static condensation of
+!!      substructures, e.g. Bathe, Finite Element Procedures, sec. 8.2.4.
+module mumps_schur_system
+   use kinds, only: dp, i8
+   use errors, only: status_t, STAT_SOLVER, STAT_SINGULAR
+   use strings, only: itoa
+   use contact_system, only: contact_system_t, contact_equations
+   use contact_dense, only: contact_dense_t
+   use mumps_solver, only: mumps_solver_t
+   implicit none
+   private
+   public :: mumps_schur_system_t
+
+   type, extends(contact_system_t) :: mumps_schur_system_t
+      integer :: nc = 0                      !! contact equations
+      integer, allocatable :: ceq(:)         !! their global equation numbers
+      integer, allocatable :: pos(:)         !! (neq) position of an equation in ceq, 0 if none
+      integer, allocatable :: ppos(:, :)     !! (nd, npair) position of each pair dof in ceq, 0 if none
+      integer, allocatable :: cdof(:, :)     !! (3, ndof) (dof, node, position) of the nodal dofs on c
+      real(dp), allocatable :: kref(:, :, :) !! (nd, nd, npair) reference springs K_ref
+      real(dp), allocatable :: dk(:, :, :)   !! (nd, nd, npair) K_c - K_ref of the current springs
+      type(contact_dense_t) :: dense         !! S_ref = S + K_ref, and S_ref + K_c - K_ref factorized
+      ! the attempt under way, and the steps whose recovery is postponed
+      logical :: first = .true.              !! the next solve is the attempt's first
+      logical :: postponed = .false.         !! some steps wait for their recovery
+      real(dp), allocatable :: b1(:)         !! (neq) first right-hand side of the attempt
+      real(dp), allocatable :: bsum(:)       !! (neq) sum of the postponed steps' first right-hand sides
+      real(dp), allocatable :: xsum(:)       !! (n_c) sum of the attempt's dv_c
+      real(dp), allocatable :: xpost(:)      !! (n_c) sum of the postponed steps' dv_c
+      real(dp), allocatable :: xc(:)         !! (n_c) work
+      real(dp), allocatable :: work(:)       !! (neq) work
+   contains
+      procedure :: prepare => schur_prepare
+      procedure :: set_springs => schur_set_springs
+      procedure :: begin_attempt => schur_begin_attempt
+      procedure :: solve => schur_solve
+      procedure :: recover => schur_recover
+      procedure :: describe => schur_describe
+      procedure :: memory_bytes => schur_memory
+   end type mumps_schur_system_t
+
+contains
+
+   !> The Schur complement of K_AB + K_ref onto the contact equations from
+   !! MUMPS's factorization (the solver must be MUMPS).
+   subroutine schur_prepare(this, kref, status)
+      class(mumps_schur_system_t), intent(inout) :: this
+      real(dp), intent(in) :: kref(:, :, :)
+      type(status_t), intent(inout) :: status
+      integer :: j, k, ip, idof, n
+      this%condensed = .true.
+      this%kref = kref
+      allocate (this%dk, mold=kref)
+      this%ceq = contact_equations(this%peq, this%neq)
+      this%nc = size(this%ceq)
+      if (this%nc < 1 .or. this%nc >= this%neq) then
+         call status%set(STAT_SOLVER, 'Schur contact system: needs between 1 and neq-1 contact equations, has '// &
+                         itoa(this%nc)//' of '//itoa(this%neq))
+         return
+      end if
+      allocate (this%pos(this%neq), this%ppos(size(this%peq, 1), size(this%peq, 2)))
+      this%pos = 0
+      do k = 1, this%nc
+         this%pos(this%ceq(k)) = k
+      end do
+      this%ppos = 0
+      do j = 1, size(this%peq, 2)
+         do k = 1, size(this%peq, 1)
+            if (this%peq(k, j) > 0) this%ppos(k, j) = this%pos(this%peq(k, j))
+         end do
+      end do
+      n = 0
+      allocate (this%cdof(3, this%nc))
+      do ip = 1, size(this%id, 2)
+         do idof = 1, 2
+            if (this%id(idof, ip) <= 0) cycle
+            if (this%pos(this%id(idof, ip)) == 0) cycle
+            n = n + 1
+            if (n > size(this%cdof, 2)) this%cdof = reshape(this%cdof, [3, 2*n], pad=[0])
+            this%cdof(:, n) = [idof, ip, this%pos(this%id(idof, ip))]
+         end do
+      end do
+      this%cdof = this%cdof(:, 1:n)
+      call this%dense%init(this%nc, size(this%peq, 1), size(this%peq, 2))
+      select type (s => this%solver)
+      type is (mumps_solver_t)
+         call s%restore_base()
+         do j = 1, size(this%peq, 2)
+            call s%add_element(this%peq(:, j), kref(:, :, j))
+         end do
+         call s%factorize_schur(this%ceq, this%dense%s, status)
+      class default
+         call status%set(STAT_SOLVER, 'Schur contact system: needs the mumps solver, has '//s%name())
+      end select
+      if (.not. status%ok()) then
+         status%message = 'Schur complement: the bodies with their contact equations held are singular or '// &
+                          'the factorization failed ('//status%message//'); check the restraints'
+         return
+      end if
+      call this%dense%prepare_projection(this%ppos, kref)
+      allocate (this%b1(this%neq), this%bsum(this%neq), this%work(this%neq), this%xsum(this%nc), &
+                this%xpost(this%nc), this%xc(this%nc))
+      this%bsum = 0.0_dp
+      this%xpost = 0.0_dp
+      this%postponed = .false.
+   end subroutine schur_prepare
+
+   !> S_ref + K_c - K_ref = S + K_c, factorized; a singular system is
+   !! reported here, with its contact equation.
+   subroutine schur_set_springs(this, kc, status)
+      class(mumps_schur_system_t), intent(inout) :: this
+      real(dp), intent(in) :: kc(:, :, :)
+      type(status_t), intent(inout) :: status
+      this%bad_eq = 0
+      this%dk = kc - this%kref
+      call this%dense%set_springs(this%ppos, this%dk, status)
+      if (.not. status%ok()) return
+      if (this%dense%bad > 0) then
+         this%bad_eq = this%ceq(this%dense%bad)
+         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%bad_eq)// &
+                         ' of the Schur complement')
+      end if
+   end subroutine schur_set_springs
+
+   subroutine schur_begin_attempt(this)
+      class(mumps_schur_system_t), intent(inout) :: this
+      this%first = .true.
+      this%xsum = 0.0_dp
+   end subroutine schur_begin_attempt
+
+   !> (K_AB + K_c) dv = b: dv at the dofs of the contact equations.
+   subroutine schur_solve(this, b, du, status)
+      class(mumps_schur_system_t), intent(inout) :: this
+      real(dp), intent(inout) :: b(:)
+      real(dp), intent(inout) :: du(:, :)
+      type(status_t), intent(inout) :: status
+      integer :: k
+      if (this%first) then
+         this%b1 = b
+         select type (s => this%solver)
+         type is (mumps_solver_t)
+            call s%schur_condense(b, this%xc, status)
+         end select
+         if (.not. status%ok()) return
+         this%first = .false.
+      else
+         ! b is zero off the contact equations: g = b_c
+         this%xc = b(this%ceq)
+      end if
+      call this%dense%solve(this%xc, status)
+      if (.not. status%ok()) return
+      if (this%dense%bad > 0) then
+         this%bad_eq = this%ceq(this%dense%bad)
+         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%bad_eq)// &
+                         ' of the Schur complement')
+         return
+      end if
+      this%xsum = this%xsum + this%xc
+      do k = 1, size(this%cdof, 2)
+         du(this%cdof(1, k), this%cdof(2, k)) = this%xc(this%cdof(3, k))
+      end do
+   end subroutine schur_solve
+
+   !> The attempt's increment away from the contact equations: one expansion
+   !! (or, postponed, the sum of several at the next need_full).
+   subroutine schur_recover(this, du, need_full, status)
+      class(mumps_schur_system_t), intent(inout) :: this
+      real(dp), intent(inout) :: du(:, :)
+      logical, intent(in) :: need_full
+      type(status_t), intent(inout) :: status
+      integer :: ip, idof, ieq
+      if (this%first) return          ! no solve in this attempt: nothing to recover
+      if (.not. need_full) then
+         this%bsum = this%bsum + this%b1
+         this%xpost = this%xpost + this%xsum
+         this%postponed = .true.
+         return
+      end if
+      select type (s => this%solver)
+      type is (mumps_solver_t)
+         if (this%postponed) then
+            ! condense the sum of the first right-hand sides, expand with the sum of dv_c
+            this%work = this%bsum + this%b1
+            call s%schur_condense(this%work, this%xc, status)
+            if (.not. status%ok()) return
+            this%xc = this%xpost + this%xsum
+         else
+            this%xc = this%xsum
+         end if
+         call s%schur_expand(this%xc, this%work, status)
+      end select
+      if (.not. status%ok()) return
+      this%bsum = 0.0_dp
+      this%xpost = 0.0_dp
+      this%postponed = .false.
+      ! the dofs away from c; those on c hold the attempt's own sum already
+      do ip = 1, size(this%id, 2)
+         do idof = 1, 2
+            ieq = this%id(idof, ip)
+            if (ieq <= 0) cycle
+            if (this%pos(ieq) == 0) du(idof, ip) = this%work(ieq)
+         end do
+      end do
+   end subroutine schur_recover
+
+   function schur_describe(this) result(s)
+      class(mumps_schur_system_t), intent(in) :: this
+      character(len=:), allocatable :: s
+      s = 'Condensed    : bodies condensed onto '//itoa(this%nc)// &
+          ' contact equations (MUMPS Schur complement of one sparse factorization)'
+   end function schur_describe
+
+   !> S and the factors of the contact equations, and the vectors.
+   pure function schur_memory(this) result(bytes)
+      class(mumps_schur_system_t), intent(in) :: this
+      integer(i8) :: bytes
+      bytes = this%dense%memory_bytes() + (3_i8*int(this%neq, i8) + 3_i8*int(this%nc, i8))*8_i8 + &
+              4_i8*int(this%neq, i8)
+      if (allocated(this%kref)) bytes = bytes + 2_i8*storage_size(this%kref, i8)/8*size(this%kref, kind=i8)
+   end function schur_memory
+end module mumps_schur_system
