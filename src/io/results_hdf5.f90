@@ -19,6 +19,8 @@
 !!                             load_factor(ncase), iterations, repeats,
 !!                             converged, residual, law_drift, ...
 !!         displacement  (npoin, 2)
+!!         displacement_xyz (npoin, 3)  the same with a zero third column (the
+!!                       vector ParaView's Xdmf3 readers need for Warp By Vector)
 !!         stress_nodal  (npoin, 4)  xx, yy, xy, zz (hoop in axisymmetry)
 !!         stress_gauss  (ngp, 4)
 !!         reaction      (npoin, 2)  zero at free dofs
@@ -175,11 +177,16 @@ contains
       type(contact_fields_t), intent(in), optional :: contact   !! written when step%contact
       integer(hid_t) :: gid
       integer :: err
+      real(dp), allocatable :: u3(:, :)              !! the displacements with a zero third component
 
       call open_increment(this, step, gid, status)
       if (.not. status%ok()) return
       err = 0
       call write_real2(gid, 'displacement', body%disp, err)
+      allocate (u3(3, size(body%disp, 2)))
+      u3(1:2, :) = body%disp
+      u3(3, :) = 0.0_dp
+      call write_real2(gid, 'displacement_xyz', u3, err)
       call write_real2(gid, 'stress_nodal', body%sig_nd, err)
       call write_real2(gid, 'stress_gauss', body%sig_gp, err)
       call write_real2(gid, 'reaction', body%react, err)

@@ -152,8 +152,8 @@ contains
           '        <Geometry GeometryType="XY">'//nl// &
           '          '//hdf_item(h5, '/mesh/coordinates', itoa(npoin)//' 2', .false.)//nl// &
           '        </Geometry>'//nl// &
-          attribute('displacement', 'Vector', hdf_item(h5, '/increments/'//trim(grp)//'/displacement', &
-                                                       itoa(npoin)//' 2', .false.))//nl// &
+          attribute('displacement', 'Vector', hdf_item(h5, '/increments/'//trim(grp)//'/displacement_xyz', &
+                                                       itoa(npoin)//' 3', .false.))//nl// &
           attribute('stress', 'Matrix', hdf_item(h5, '/increments/'//trim(grp)//'/stress_nodal', &
                                                  itoa(npoin)//' 4', .false.))//nl// &
           load_factor_attribute(lambda)//nl//'      </Grid>'

@@ -109,6 +109,10 @@ def check_bodies(g, base, npoin, nelem, step):
     names = check_node_attributes(g, base, npoin)
     if sorted(names) != ["displacement", "stress"]:
         fail(f"the bodies' attributes are {names}, expected displacement and stress")
+    disp = hdf_dataset(g.find("Attribute[@Name='displacement']/DataItem"), base)
+    u = step.field("displacement")
+    if disp.shape != (npoin, 3) or not np.array_equal(disp[:, :2], u) or np.any(disp[:, 2] != 0.0):
+        fail("the displacement attribute is not the displacements with a zero third component")
     check_load_factor(g, step)
 
 
