@@ -293,6 +293,19 @@ class TestWarningsAndBounds(Work):
         rp = rep.replay_normal(fit, self.path("replay_adm"), exe=self.exe())
         self.assertLessEqual(rp.max_model_error, 1e-6 * rp.scale)
 
+    def test_unloading_exponent_never_below_loading(self):
+        """Data unloaded along a flatter exponent (m2 = 0.35 < m = 0.5, admissible over the
+        measured reversal pressures 8-25 kgf/cm2): the program rejects M2 < M (its residual
+        closure is negative at small reversal pressures), so the fit keeps m2 >= m and the
+        cards it writes are accepted and replayed by the program."""
+        p, u, b = gen.normal_cycles(0.8, 0.5, 0.6, 0.35, peaks=(8.0, 16.0, 25.0), npts=12)
+        gen.write_normal(self.path("n_m2.csv"), p, u)
+        fit = cal.fit_normal(self.path("n_m2.csv"), KGF)
+        m, m2 = fit.value("m"), fit.value("m2")
+        self.assertGreaterEqual(m2, m * (1 - 1e-12), "m2 = %.6g below m = %.6g" % (m2, m))
+        rp = rep.replay_normal(fit, self.path("replay_m2"), exe=self.exe())
+        self.assertLessEqual(rp.max_model_error, 1e-6 * rp.scale)
+
 
 class TestCards(unittest.TestCase):
     def test_fields(self):

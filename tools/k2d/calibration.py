@@ -661,9 +661,11 @@ def _fit_cycles(fit, p, u, rev, sig, c0, m0, same_exponent):
     pa = p[sorted(set(int(a) for a in rev[rev >= 0]))]
     used = (p > 0.0) | (rev >= 0)          # rows at p = 0 on the virgin curve carry no information
 
+    # m2 = m + y[3] with y[3] >= 0: the program rejects M2 < M (its residual closure is
+    # negative at small reversal pressures, docs/contact.md), so the fit never proposes it
     def natural(y):
         c, m = math.exp(y[0]), y[1]
-        m2 = m if same_exponent else y[3]
+        m2 = m if same_exponent else m + y[3]
         return c, m, y[2] * unloading_bound(pa, m, m2) * c, m2
 
     def res_nat(x):
@@ -679,10 +681,10 @@ def _fit_cycles(fit, p, u, rev, sig, c0, m0, same_exponent):
     ua = virgin(p[rev[on]], c0, m0)
     c2 = float(np.sum(d * (ua - u[on])) / max(np.sum(d * d), 1e-300))
     best = None
-    for m2s in ([m0] if same_exponent else [m0, 0.7 * m0, 1.4 * m0]):
+    for m2s in ([m0] if same_exponent else [m0, 1.2 * m0, 1.4 * m0]):
         t0 = min(max(c2 / (unloading_bound(pa, m0, m2s) * c0), 0.05), 0.98)
-        y0 = [math.log(c0), m0, t0] + ([] if same_exponent else [m2s])
-        lo = [-np.inf, 1e-6, 1e-9] + ([] if same_exponent else [1e-6])
+        y0 = [math.log(c0), m0, t0] + ([] if same_exponent else [m2s - m0])
+        lo = [-np.inf, 1e-6, 1e-9] + ([] if same_exponent else [0.0])
         hi = [np.inf, 20.0, 1.0] + ([] if same_exponent else [20.0])
         sol = least_squares(res_y, y0, bounds=(lo, hi), x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14)
         if best is None or sol.cost < best.cost:
