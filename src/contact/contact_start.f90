@@ -106,6 +106,7 @@ contains
          end do
       end function resultant
    end subroutine start_pressure
+
    !> The pressure a load increment is expected to bring to the rough pairs
    !! resting at their zero-force end after an unloading (`st%p_incr`, used by
    !! begin_increment for a reload from zero): the increment's resultant on
