@@ -114,6 +114,8 @@ module contact_algorithm
       real(dp), allocatable :: fn(:), ft(:)       !! current forces
       real(dp), allocatable :: dun(:), dut(:)     !! current increments of closure and slip
       real(dp) :: p_start = 0.0_dp                !! p_m of eq. (4.1)
+      real(dp) :: p_incr = 0.0_dp                 !! RETURN: pressure the increment is expected to bring
+                                                  !! (contact_start's increment_pressure; 0: none)
       logical :: chatter = .false.                !! a pair exhausted its mode changes
       ! ideal contact (augmented Lagrangian)
       logical :: has_ideal = .false.              !! some interface is IDEAL
@@ -283,6 +285,25 @@ contains
             md%tstate = s%tstate
             md%mu = friction_coefficient(ifc, s%ve)
             md%uthr = reclose_threshold(ifc, s%on_unloading, s%ua, s%pa)
+            if (returning .and. .not. first .and. pr%area > 0.0_dp) then
+               if (reload_from_zero(ifc, s, md, pr%area, st%p_incr)) then
+                  ! a reload from the zero-force end of the unloading branch (its tangent
+                  ! is zero there for m2 < 1, and a pair open by a gap the increment
+                  ! closes has none): touching, on the secant from the zero-force point to
+                  ! the pressure the increment is expected to bring (eq. 4.1's start
+                  ! pressure for this increment); the solutions then follow the law
+                  md%closed = .true.
+                  md%newly_closed = .not. s%closed
+                  p = st%p_incr
+                  md%kn = pr%area*p/max(branch_closure(ifc, md, p) - md%uthr, tiny(1.0_dp))
+                  md%kte = pr%area*tangential_stiffness(p, ifc%s, ifc%r_t(local_index(cdef, j)))
+                  md%xb = merge(s%xb, 0.0_dp, s%closed)
+                  md%tstate = TS_STICK
+                  md%tsign = 0
+                  call set_kt(ifc, md)
+                  cycle
+               end if
+            end if
             if (.not. s%closed .or. pr%area <= 0.0_dp) then
                md%closed = .false.
                md%tstate = TS_STICK
@@ -319,6 +340,26 @@ contains
          end associate
       end do
    end subroutine begin_increment
+
+   !> Does a rough pair start a loading increment (expected pressure pe > 0)
+   !! at the zero-force end of its unloading branch?  Closed there with zero
+   !! force (to 1e-9 of its force at A), or open below its residual closure
+   !! u_res by less than the closure pe brings on the branch (a gap the
+   !! increment is expected to close; after an unloading to zero these are the
+   !! differences of the pairs' residual closures, down to round-off).
+   pure logical function reload_from_zero(ifc, s, md, area, pe) result(yes)
+      type(interface_t), intent(in) :: ifc
+      type(pair_state_t), intent(in) :: s
+      type(pair_mode_t), intent(in) :: md
+      real(dp), intent(in) :: area, pe
+      yes = .false.
+      if (.not. (pe > 0.0_dp) .or. .not. s%on_unloading .or. ifc%law /= LAW_ROUGH) return
+      if (s%closed) then
+         yes = s%fn <= 1.0e-9_dp*area*s%pa
+      else
+         yes = s%un >= md%uthr - (branch_closure(ifc, md, pe) - md%uthr)
+      end if
+   end function reload_from_zero
 
    !> Closure at which an open pair closes: 0, or the residual closure after unloading.
    pure real(dp) function reclose_threshold(ifc, on_unloading, ua, pa) result(u)

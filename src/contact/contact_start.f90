@@ -5,12 +5,12 @@ module contact_start
    use kinds, only: dp
    use errors, only: status_t, STAT_INPUT
    use model, only: model_t
-   use contact_types, only: LAW_ROUGH
+   use contact_types, only: LAW_ROUGH, UPDATE_RETURN
    use contact_algorithm, only: contact_state_t, contact_init
    use restraint_check, only: find_bodies
    implicit none
    private
-   public :: init_contact_states, start_pressure
+   public :: init_contact_states, start_pressure, increment_pressure
 
 contains
 
@@ -106,4 +106,85 @@ contains
          end do
       end function resultant
    end subroutine start_pressure
+
+   !> The pressure a load increment is expected to bring to the rough pairs
+   !! resting at their zero-force end after an unloading (`st%p_incr`, used by
+   !! begin_increment for a reload from zero): the increment's resultant on
+   !! body A pressing it onto B, normal to the mean contact normal, over the
+   !! area of the rough pairs that are closed or on their unloading branch --
+   !! the start pressure of eq. (4.1) for the increment at hand.  Zero when no
+   !! pair rests at its zero-force end, when the increment pulls the bodies
+   !! apart or holds the load, or is driven by prescribed displacements only
+   !! (no force to measure it by), and with the paper's EXPLICIT scheme.
+   !! Ref: Altenbach & Buczkowski, eq. (4.1); SPEC §4.1.
+   subroutine increment_pressure(m, fcase, dlam, st)
+      type(model_t), intent(in) :: m
+      real(dp), intent(in) :: fcase(:, :, :)   !! (2, npoin, ncase) forces of the load cases at factor 1
+      real(dp), intent(in) :: dlam(:)          !! (ncase) load factor increments of the increment
+      type(contact_state_t), intent(inout) :: st
+      integer, allocatable :: body(:), nolinks(:, :)
+      logical, allocatable :: in_a(:), in_b(:)
+      real(dp) :: nbar(2), aa, fa, fb
+      integer :: nbody, j, k
+      logical :: resting
+
+      st%p_incr = 0.0_dp
+      if (m%contact%opts%update /= UPDATE_RETURN) return
+      resting = .false.
+      do j = 1, size(m%contact%pairs)
+         associate (pr => m%contact%pairs(j), s => st%s(j))
+            if (m%contact%ifaces(pr%iface)%law /= LAW_ROUGH .or. pr%area <= 0.0_dp) cycle
+            if (.not. s%on_unloading) cycle
+            if (.not. s%closed .or. s%fn <= 1.0e-9_dp*pr%area*s%pa) resting = .true.
+         end associate
+      end do
+      if (.not. resting) return
+      allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
+      call find_bodies(m, nolinks, body, nbody)
+      in_a = .false.
+      in_b = .false.
+      nbar = 0.0_dp
+      aa = 0.0_dp
+      do j = 1, size(m%contact%pairs)
+         associate (pr => m%contact%pairs(j))
+            if (m%contact%ifaces(pr%iface)%law /= LAW_ROUGH .or. pr%area <= 0.0_dp) cycle
+            if (body(pr%node_a) > 0) in_a = in_a .or. body == body(pr%node_a)
+            do k = 2, pr%nn
+               if (body(pr%nodes(k)) > 0) then
+                  in_b = in_b .or. body == body(pr%nodes(k))
+               else
+                  in_b(pr%nodes(k)) = .true.      ! a rigid body's reference node
+               end if
+            end do
+            if (.not. (st%s(j)%closed .or. st%s(j)%on_unloading)) cycle
+            aa = aa + pr%area
+            nbar = nbar + pr%area*pr%n
+         end associate
+      end do
+      if (.not. (aa > 0.0_dp)) return
+      nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
+      ! n points from B into A: a load pressing A onto B points along -n on A, +n on B
+      fa = -dot_product(increment_resultant(in_a), nbar)
+      fb = dot_product(increment_resultant(in_b .and. .not. in_a), nbar)
+      if (abs(fa) > 0.0_dp) then
+         st%p_incr = max(fa, 0.0_dp)/aa
+      else
+         st%p_incr = max(fb, 0.0_dp)/aa
+      end if
+      if (.not. (st%p_incr < huge(1.0_dp))) st%p_incr = 0.0_dp
+   contains
+      !> Resultant of the increment's loads on the flagged nodes.
+      function increment_resultant(flag) result(f)
+         logical, intent(in) :: flag(:)
+         real(dp) :: f(2)
+         integer :: ip, ic
+         f = 0.0_dp
+         do ip = 1, m%npoin
+            if (.not. flag(ip)) cycle
+            do ic = 1, size(dlam)
+               f = f + dlam(ic)*fcase(:, ip, ic)
+            end do
+         end do
+      end function increment_resultant
+   end subroutine increment_pressure
 end module contact_start

@@ -23,6 +23,8 @@ module increment_attempt
       real(dp) :: rnorm = 0.0_dp                   !! relative out-of-balance force
       real(dp) :: fscale = 0.0_dp                  !! the force the out-of-balance force was measured against
       real(dp) :: dnorm = 0.0_dp                   !! last correction relative to the increment (Newton)
+      real(dp) :: duscale = 0.0_dp                 !! largest displacement increment of a converged
+                                                   !! attempt that was not a hold (the scale of a hold's corrections)
       integer :: nchanged = 0                      !! pairs that changed their mode in the last solution
       integer :: first_changed = 0                 !! the first of them
    end type attempt_t

@@ -52,7 +52,7 @@ module incremental
                                 law_drift, augment_multipliers, MAX_SWITCH
    use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
                          sliding_warning, check_finite_springs
-   use contact_start, only: init_contact_states, start_pressure
+   use contact_start, only: init_contact_states, start_pressure, increment_pressure
    use increment_attempt, only: attempt_t, attempt_failure
    use contact_fields, only: build_contact_fields, pair_spacing
    use results_hdf5, only: results_file_t
@@ -444,7 +444,7 @@ contains
       logical, allocatable :: changed(:)
       integer :: iter, maxit
       real(dp) :: fscale, dnorm
-      logical :: need_matrix, done, again, newton
+      logical :: need_matrix, done, again, newton, hold
 
       allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), rpred(an%springs%nd, an%npair), &
                 changed(an%npair))
@@ -460,10 +460,13 @@ contains
       st%chatter = .false.
       newton = an%returning .and. st%has_rough
       att%dnorm = 0.0_dp
+      hold = .false.
       call load_increment(an%coup, an%map, an%fcase, an%ucase, an%restrained, dlam, carry, rhs, att%du)
       fscale = max(maxval([0.0_dp, abs(rhs)]), maxval(abs(fext_new)), 1.0e-300_dp)
       ! spring forces and modes at the start of the increment
       if (an%has_contact) then
+         ! the pressure a reload from zero force is expected to bring (0: none)
+         if (.not. first .and. st%has_rough) call increment_pressure(m, an%fcase, dlam, st)
          call begin_increment(m%contact, st, first)
          call an%springs%start_forces(m%contact, st, rvec, rpred, rhs)
       end if
@@ -488,7 +491,8 @@ contains
             ! force drives it) is measured against the last increment's scale
             ! (the load, a sum of increments, is zero to round-off of the run's forces)
             if (an%map%neq > 0 .and. maxval(abs(fext_new)) <= 1.0e-12_dp*an%force_scale) then
-               if (maxval(abs(rhs - carry)) <= 1.0e-12_dp*an%force_scale) fscale = max(fscale, att%fscale)
+               hold = maxval(abs(rhs - carry)) <= 1.0e-12_dp*an%force_scale
+               if (hold) fscale = max(fscale, att%fscale)
             end if
          end if
          ! the solution at (at least) the contact equations' dofs
@@ -506,7 +510,10 @@ contains
          end if
          ! predicted spring forces (the linearisation the solve used) ...
          call an%springs%predicted_forces(m%contact%pairs, rvec, ddu, rpred)
-         dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/max(maxval(abs(att%du)), tiny(1.0_dp))
+         ! (a hold moves by round-off only: its corrections are measured against the
+         ! largest displacement increment of the run so far)
+         dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/ &
+                 max(maxval(abs(att%du)), merge(att%duscale, 0.0_dp, hold), tiny(1.0_dp))
          ddu = 0.0_dp
          ! ... against the actual ones, after the mode checks
          call update_modes(again)
@@ -534,6 +541,7 @@ contains
       end do
       att%carry = rhs
       att%fscale = fscale
+      if (att%converged .and. .not. hold) att%duscale = max(att%duscale, maxval(abs(att%du)))
    contains
       !> Modes and forces of the pairs for the current displacements, and the
       !! out-of-balance force; again: some mode changed, so the increment is

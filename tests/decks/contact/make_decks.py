@@ -101,7 +101,7 @@ def rotation(name):
     d.write(os.path.join(HERE, name + ".dat"))
 
 
-def cycle(name, unload_to, autoinc=False, reload_to=1.5, scheme=None, hold=0, m=0.5):
+def cycle(name, unload_to, autoinc=False, reload_to=1.5, scheme=None, hold=0, m=0.5, m2=None, cn2=0.5):
     """Issue 16: a quasi-rigid block (E = 1e6, nu = 0) pressed on the fixed base through the rough
     law by a uniform pressure, loaded to p_max = 1 N/mm2 in 10 increments, unloaded to unload_to
     p_max in 10 and (reload_to > 0) reloaded to reload_to p_max in 10.  No SCHEME card: the default
@@ -117,9 +117,12 @@ def cycle(name, unload_to, autoinc=False, reload_to=1.5, scheme=None, hold=0, m=
     if autoinc:
         d.options = ["AUTOINC   ON"]
     d.edge_pressure("A", lambda x, y: abs(y - 10.0) < 1e-12, 1.0)
-    d.contact = ["UNITS     KGF_UM", "NORMAL           1.0%10.1f       0.5%10.1f" % (m, m),
+    m2 = m if m2 is None else m2
+    d.contact = ["UNITS     KGF_UM", "NORMAL           1.0%10.1f%10.1f%10.1f" % (m, cn2, m2),
                  "FRICTION  NONE"] + (["SCHEME    " + scheme] if scheme else []) + surfaces(d)
-    if m != 0.5:
+    if m2 != m or cn2 != 0.5:
+        d.comments[2] = "c_n = 1, m = %g, c_n2 = %g, m2 = %g (um, kgf/cm2).  No SCHEME card (the default)." % (m, cn2, m2)
+    elif m != 0.5:
         d.comments[2] = "c_n = 1, m = %g, c_n2 = 0.5, m2 = %g (um, kgf/cm2).  No SCHEME card (the default)." % (m, m)
     if scheme:
         d.comments[2] = "c_n = 1, m = 0.5, c_n2 = 0.5, m2 = 0.5 (um, kgf/cm2).  SCHEME %s." % scheme
@@ -178,6 +181,9 @@ if __name__ == "__main__":
     cycle("cycle_incremental", 0.01, scheme="INCREMENTAL")
     cycle("unload_zero_incremental", 0.0, reload_to=0.0, scheme="INCREMENTAL")
     cycle("unload_zero_reload", 0.0, reload_to=1.5, hold=2)
+    # M2 != M (valid: with c_n2 = 0.3 the residual closure stays >= 0 and the unloading branch
+    # stiffer than loading at A for p_A up to (1 x 0.5 / (0.3 x 0.7))^(1/0.2) = 76 kgf/cm2)
+    cycle("unload_zero_reload_m2", 0.0, reload_to=1.5, hold=2, m2=0.7, cn2=0.3)
     # a stiffening law (m = m2 = 1.2): the unloading branch is concave, its tangent infinite at u_res
     cycle("unload_zero_m12", 0.0, reload_to=0.0, m=1.2)
     cycle("unload_zero", 0.0, reload_to=0.0)
