@@ -13,7 +13,7 @@
 module deck_contact
    use kinds, only: dp
    use strings, only: itoa, rtoa
-   use deck_lexer, only: deck_t
+   use deck_lexer, only: deck_t, shown
    use model, only: model_t
    use contact_types, only: interface_t, contact_options_t, LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, &
                             FRICTION_COULOMB, FRICTION_FREDRIKSSON, UNITS_KGF_UM, UNITS_N_UM, &
@@ -165,6 +165,7 @@ contains
             ic = d%next()
             if (d%is_keyword_card(ic)) then
                call read_contact_keyword(d, ic, m%npoin, cs, cur)
+               if (cur%mode /= DATA_NONE) call read_data_run(d, m%npoin, cs, cur)
             else
                call read_contact_data(d, ic, m%npoin, cs, cur)
             end if
@@ -247,24 +248,83 @@ contains
       end select
    end subroutine read_contact_keyword
 
+   !> The data cards after a SURFACE, PAIRS or RIGID POLYLINE card, up to the
+   !! next keyword card, in two passes: count them, then read them into
+   !! buffers sized once and append those at once, so that a long list costs
+   !! linear time.  A node listed twice in one surface is an error.
+   subroutine read_data_run(d, npoin, cs, cur)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: npoin                  !! nodes of the model
+      type(contact_spec_t), intent(inout) :: cs
+      type(contact_cursor_t), intent(in) :: cur     !! the data the cards hold
+      integer :: ncard, k, ic, nn, nv, np, n0, nif
+      integer, allocatable :: nodes(:), first_line(:)
+      real(dp), allocatable :: xy(:, :), tmp(:, :)
+      type(pair_spec_t), allocatable :: pairs(:)
+      type(pair_spec_t) :: p
+      logical :: ok
+
+      ncard = 0
+      do while (d%pos + ncard < d%ncard)
+         if (d%is_keyword_card(d%pos + ncard + 1)) exit
+         ncard = ncard + 1
+      end do
+      if (ncard == 0) return
+      nif = size(cs%ifaces)
+      select case (cur%mode)
+      case (DATA_SURFACE)
+         associate (surf => cs%ifaces(nif)%surf(cur%iside))
+            allocate (nodes(16*ncard), first_line(max(npoin, 1)))
+            first_line = 0
+            do k = 1, size(surf%nodes)
+               if (surf%nodes(k) >= 1 .and. surf%nodes(k) <= npoin) first_line(surf%nodes(k)) = surf%line
+            end do
+            nn = 0
+            do k = 1, ncard
+               ic = d%next()
+               call read_node_list(d, ic, npoin, nodes, nn, first_line)
+            end do
+            surf%nodes = [surf%nodes, nodes(1:nn)]
+         end associate
+      case (DATA_PAIRS)
+         allocate (pairs(ncard))
+         np = 0
+         do k = 1, ncard
+            ic = d%next()
+            call read_pair(d, ic, npoin, p, ok)
+            if (.not. ok) cycle
+            np = np + 1
+            pairs(np) = p
+         end do
+         cs%ifaces(nif)%pairs = [cs%ifaces(nif)%pairs, pairs(1:np)]
+      case (DATA_VERTICES)
+         allocate (xy(2, ncard))
+         nv = 0
+         do k = 1, ncard
+            ic = d%next()
+            call read_vertex(d, ic, xy(:, nv + 1), ok)
+            if (ok) nv = nv + 1
+         end do
+         associate (rb => cs%rigids(size(cs%rigids)))
+            n0 = size(rb%xy, 2)
+            allocate (tmp(2, n0 + nv))
+            tmp(:, 1:n0) = rb%xy
+            tmp(:, n0 + 1:n0 + nv) = xy(:, 1:nv)
+            call move_alloc(tmp, rb%xy)
+         end associate
+      end select
+   end subroutine read_data_run
+
    !> A data card of CONTACT: what it holds depends on the last keyword card.
    subroutine read_contact_data(d, ic, npoin, cs, cur)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic, npoin
-      type(contact_spec_t), intent(inout) :: cs
+      type(contact_spec_t), intent(in) :: cs
       type(contact_cursor_t), intent(in) :: cur
-      select case (cur%mode)
-      case (DATA_SURFACE)
-         call read_node_list(d, ic, npoin, cs%ifaces(size(cs%ifaces))%surf(cur%iside))
-      case (DATA_PAIRS)
-         call read_pair(d, ic, npoin, cs%ifaces(size(cs%ifaces)))
-      case (DATA_VERTICES)
-         call read_vertex(d, ic, cs%rigids(size(cs%rigids)))
-      case default
-         call d%error_at(ic, 1, 'E-CARD', 'CONTACT: a data card must follow a SURFACE, PAIRS or RIGID POLYLINE '// &
-                         'card, found "'// &
-                         trim(d%cards(ic)%text)//'"')
-      end select
+      ! the data cards of SURFACE, PAIRS and RIGID POLYLINE are read by read_data_run
+      if (cur%mode /= DATA_NONE .or. npoin < 0 .or. size(cs%ifaces) < 0) return
+      call d%error_at(ic, 1, 'E-CARD', 'CONTACT: a data card must follow a SURFACE, PAIRS or RIGID POLYLINE '// &
+                      'card, found "'//shown(trim(d%cards(ic)%text))//'"')
    end subroutine read_contact_data
 
    !> INTERFACE card (or the first card of an interface): a new interface.
@@ -292,7 +352,7 @@ contains
       character(len=:), allocatable :: t
       t = trim(adjustl(d%field_text(ic, col, 100000)))
       if (len(t) > 0) then
-         call d%error_at(ic, col, 'E-EXTRA', 'CONTACT: expected '//what//', found more: "'//t//'"')
+         call d%error_at(ic, col, 'E-EXTRA', 'CONTACT: expected '//what//', found more: "'//shown(t)//'"')
          ok = .false.
       end if
    end subroutine tail
@@ -552,11 +612,14 @@ contains
       end if
    end subroutine read_surface
 
-   !> A data card of a SURFACE: up to 16 node numbers, I5 each.
-   subroutine read_node_list(d, ic, npoin, surf)
+   !> A data card of a SURFACE: up to 16 node numbers, I5 each, appended to
+   !! nodes(1:nn); first_line(node) is the line where a node was listed first.
+   subroutine read_node_list(d, ic, npoin, nodes, nn, first_line)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic, npoin
-      type(surface_spec_t), intent(inout) :: surf
+      integer, intent(inout) :: nodes(:)         !! room for 16 more
+      integer, intent(inout) :: nn
+      integer, intent(inout) :: first_line(:)    !! (npoin)
       integer :: k, c1, node
       logical :: ok
       ok = .true.
@@ -570,21 +633,28 @@ contains
                             itoa(c1 + 4)//') expected 1..'//itoa(npoin)//', found '//itoa(node))
             cycle
          end if
-         surf%nodes = [surf%nodes, node]
+         if (first_line(node) /= 0) then
+            call d%error_at(ic, c1, 'E-DUPLICATE', 'CONTACT/SURFACE: node '//itoa(node)//' (columns '// &
+                            itoa(c1)//'-'//itoa(c1 + 4)//') is listed twice in this surface (first on line '// &
+                            itoa(first_line(node))//')')
+            cycle
+         end if
+         first_line(node) = d%cards(ic)%line
+         nn = nn + 1
+         nodes(nn) = node
       end do
       if (len_trim(d%field_text(ic, 81, 100000)) > 0) call d%error_at(ic, 81, 'E-EXTRA', &
                                                 'CONTACT/SURFACE: at most 16 node numbers per card (columns 1-80)')
    end subroutine read_node_list
 
    !> A data card of PAIRS: NODEA, NODEB, G0, ALPHA (degrees), AREA.
-   subroutine read_pair(d, ic, npoin, s)
+   subroutine read_pair(d, ic, npoin, p, ok)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic, npoin
-      type(iface_spec_t), intent(inout) :: s
-      type(pair_spec_t) :: p
+      type(pair_spec_t), intent(out) :: p     !! the pair (when ok)
+      logical, intent(out) :: ok              !! the card holds a valid pair
       integer :: na, nb
       real(dp) :: g0, alpha, area
-      logical :: ok
       ok = .true.
       call d%get_int(ic, 1, 5, 'CONTACT/PAIRS', 'NODEA', na, ok)
       call d%get_int(ic, 6, 10, 'CONTACT/PAIRS', 'NODEB', nb, ok)
@@ -596,18 +666,19 @@ contains
       if (na < 1 .or. na > npoin .or. nb < 1 .or. nb > npoin) then
          call d%error_at(ic, 1, 'E-RANGE', 'CONTACT/PAIRS: node numbers (columns 1-10) expected 1..'// &
                          itoa(npoin)//', found '//itoa(na)//' and '//itoa(nb))
+         ok = .false.
          return
       end if
       if (len_trim(d%field_text(ic, 31, 40)) > 0 .and. .not. (area > 0.0_dp)) then
          call d%error_at(ic, 31, 'E-CONTACT', 'CONTACT/PAIRS: AREA (columns 31-40) expected a positive area, '// &
                          'found '//rtoa(area))
+         ok = .false.
          return
       end if
       p = pair_spec_t(node_a=na, node_b=nb, g0=g0, alpha=alpha, area=area, &
                       has_g0=len_trim(d%field_text(ic, 11, 20)) > 0, &
                       has_alpha=len_trim(d%field_text(ic, 21, 30)) > 0, &
                       has_area=len_trim(d%field_text(ic, 31, 40)) > 0, line=d%cards(ic)%line)
-      s%pairs = [s%pairs, p]
    end subroutine read_pair
 
    !> MATCHING: NODE (node-to-node pairs) or SEGMENT (nodes of A against edges of B).
@@ -706,18 +777,15 @@ contains
    end subroutine read_rigid
 
    !> A vertex of a POLYLINE profile: X (1-10), Y (11-20) [model length].
-   subroutine read_vertex(d, ic, rb)
+   subroutine read_vertex(d, ic, xy, ok)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic
-      type(rigid_body_t), intent(inout) :: rb
-      real(dp) :: x, y
-      logical :: ok
+      real(dp), intent(out) :: xy(2)          !! the vertex (when ok)
+      logical, intent(out) :: ok              !! the card holds a valid vertex
       ok = .true.
-      call d%get_real(ic, 1, 10, 'CONTACT/RIGID', 'X', x, ok)
-      call d%get_real(ic, 11, 20, 'CONTACT/RIGID', 'Y', y, ok)
+      call d%get_real(ic, 1, 10, 'CONTACT/RIGID', 'X', xy(1), ok)
+      call d%get_real(ic, 11, 20, 'CONTACT/RIGID', 'Y', xy(2), ok)
       call tail(d, ic, 21, 'X, Y of a vertex in columns 1-20', ok)
-      if (.not. ok) return
-      rb%xy = reshape([reshape(rb%xy, [size(rb%xy)]), x, y], [2, size(rb%xy, 2) + 1])
    end subroutine read_vertex
 
    ! ------------------------------------------------------------------ CONTACT: algorithm options

@@ -16,8 +16,8 @@
 module group_cards
    use kinds, only: dp
    use strings, only: itoa, rtoa
-   use deck_lexer, only: deck_t
-   use model, only: model_t, restraint_t, point_load_t, edge_load_t, find_node_set, find_edge_set
+   use deck_lexer, only: deck_t, shown
+   use model, only: model_t, MAX_CASE, restraint_t, point_load_t, edge_load_t, find_node_set, find_edge_set
    use topology, only: element_edge_nodes
    implicit none
    private
@@ -87,7 +87,7 @@ contains
       character(len=:), allocatable :: tail
       tail = trim(adjustl(d%field_text(ic, col, 100000)))
       if (len(tail) > 0) then
-         call d%error_at(ic, col, 'E-EXTRA', card//': expected '//expected//', found more: "'//tail//'"')
+         call d%error_at(ic, col, 'E-EXTRA', card//': expected '//expected//', found more: "'//shown(tail)//'"')
          ok = .false.
       end if
    end subroutine check_tail
@@ -125,8 +125,9 @@ contains
                          '01 (y fixed) or 11 (both), found '//itoa(code))
          return
       end if
-      if (icase < 1) then
-         call d%error_at(ic, 56, 'E-RANGE', card//': CASE (columns 56-60) expected a load case >= 1, found '// &
+      if (icase < 1 .or. icase > MAX_CASE) then
+         call d%error_at(ic, 56, 'E-RANGE', card//': CASE (columns 56-60) expected a load case '// &
+                         '1..'//itoa(MAX_CASE)//', found '// &
                          itoa(icase))
          return
       end if
@@ -265,8 +266,9 @@ contains
                                       'known: '//set_names(m, .false.))
       end if
       if (ks == 0) return
-      if (icase < 1) then
-         call d%error_at(ic, 51, 'E-RANGE', card//': CASE (columns 51-55) expected a load case >= 1, found '// &
+      if (icase < 1 .or. icase > MAX_CASE) then
+         call d%error_at(ic, 51, 'E-RANGE', card//': CASE (columns 51-55) expected a load case '// &
+                         '1..'//itoa(MAX_CASE)//', found '// &
                          itoa(icase))
          ks = 0
       end if
