@@ -48,7 +48,7 @@ module incremental
    use contact_fields, only: build_contact_fields, pair_spacing
    use results_hdf5, only: results_file_t
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, list_progress, &
-                      list_completed, list_failed, list_drift_note, list_sliding_warning, list_chatter_warning
+                      list_completed, list_failed, close_listing, list_drift_note, list_sliding_warning, list_chatter_warning
    implicit none
    private
    public :: run_options_t, run_result_t, run_analysis
@@ -286,7 +286,8 @@ contains
 
       out%have_lis = out%lis_level /= 'NONE'
       if (out%have_lis) then
-         open (newunit=out%lu, file=out%lis_path, status='replace', action='write', iostat=ios, iomsg=iomsg)
+         open (newunit=out%lu, file=out%lis_path, status='replace', action='write', access='stream', &
+               form='formatted', iostat=ios, iomsg=iomsg)
          if (ios /= 0) then
             call status%set(STAT_INPUT, 'cannot open the listing file '//out%lis_path//': '//trim(iomsg))
             return
@@ -297,16 +298,16 @@ contains
          if (out%lis_level == 'FULL') call list_input(out%lu, m)
       end if
       call out%rf%create(res%results_path, m, res%body_fields_t, status)
+      if (status%ok()) call out%rf%write_run_info(res%info, status)
+      if (res%info%npair > 0 .and. status%ok()) call out%rf%write_contact_definition(m%contact, res%info, status)
       if (.not. status%ok()) then
-         ! a result path that cannot be written is a command-line error
-         status%code = STAT_INPUT
+         ! a result path that cannot be created is a command-line error; a file created
+         ! but not written (a full disk) is an output failure (exit 3)
+         if (.not. out%rf%is_open()) status%code = STAT_INPUT
          call out%rf%close()
          if (out%have_lis) close (out%lu, status='delete')
          return
       end if
-      call out%rf%write_run_info(res%info, status)
-      if (res%info%npair > 0 .and. status%ok()) call out%rf%write_contact_definition(m%contact, res%info, status)
-      if (.not. status%ok()) return
       if (.not. out%quiet) then
          call list_header(stdout, m, res%info)
          call write_numbering_report(stdout, numbering)
@@ -677,9 +678,10 @@ contains
       type(analysis_t), intent(in) :: an
       type(run_result_t), intent(inout) :: res
       type(outputs_t), intent(inout) :: out
-      type(status_t), intent(in) :: status
+      type(status_t), intent(inout) :: status   !! a failure to write the listing or the result file ends it
+      if (out%have_lis) call close_listing(out%lu, out%lis_path, status)
+      if (status%ok()) call out%rf%set_status('completed', status)
       if (status%ok()) then
-         call out%rf%set_status('completed')
          if (.not. out%quiet) call list_completed(stdout, res%completed, res%results_path)
          if (an%has_contact .and. .not. an%returning .and. .not. out%quiet) call list_drift_note(stderr, res%drift)
       else
@@ -687,7 +689,6 @@ contains
          res%reported = .true.
          call list_failed(stderr, res%completed, status%message, res%results_path, m%results_every)
       end if
-      call out%rf%close()
-      if (out%have_lis) close (out%lu)
+      call out%rf%close(status)
    end subroutine close_outputs
 end module incremental

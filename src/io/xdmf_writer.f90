@@ -59,6 +59,7 @@ contains
       integer :: u, i, k, kind_used, ntypes
       character(len=16) :: grp
       character(len=*), parameter :: nl = achar(10)
+      integer :: pos, nbytes
 
       h5 = basename(h5_path)
       ntypes = count(ncells > 0)
@@ -68,7 +69,8 @@ contains
       end do
       ! write to a temporary file, then rename: a reader never sees half a file
       tmp = path//'.tmp'
-      open (newunit=u, file=tmp, status='replace', action='write', iostat=ierr)
+      open (newunit=u, file=tmp, status='replace', action='write', access='stream', form='formatted', &
+            iostat=ierr)
       if (ierr /= 0) return
       write (u, '(a)', iostat=ierr) '<?xml version="1.0" ?>'//nl// &
          '<!DOCTYPE Xdmf SYSTEM "Xdmf.dtd" []>'//nl// &
@@ -109,8 +111,18 @@ contains
          close (u, status='delete')
          return
       end if
+      ! gfortran reports no error when a formatted write or a close meets a full
+      ! disk: the size of the closed file is compared with the position written
+      inquire (unit=u, pos=pos)
       close (u, iostat=ierr)
-      if (ierr /= 0) return
+      nbytes = -1
+      inquire (file=tmp, size=nbytes)
+      if (ierr == 0 .and. nbytes < pos - 1) ierr = -1
+      if (ierr /= 0) then
+         open (newunit=u, file=tmp, status='old', iostat=k)
+         if (k == 0) close (u, status='delete')
+         return
+      end if
       call rename_file(tmp, path, ierr)
    contains
       !> One nodal stress component as a hyperslab (column k-1) of stress_nodal.
