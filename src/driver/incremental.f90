@@ -128,6 +128,7 @@ module incremental
       logical :: converged = .false.
       logical :: changing = .false.                !! springs still changed their modes at the end
       real(dp) :: rnorm = 0.0_dp                   !! relative out-of-balance force
+      real(dp) :: dnorm = 0.0_dp                   !! relative displacement correction of the last solution
    end type attempt_t
 
 contains
@@ -425,7 +426,7 @@ contains
       real(dp), allocatable :: rhs(:), ddu(:, :), rvec(:, :), rpred(:, :)
       logical, allocatable :: changed(:)
       integer :: iter, maxit
-      real(dp) :: fscale, dnorm
+      real(dp) :: fscale
       logical :: need_matrix, done, again
 
       allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), rpred(an%springs%nd, an%npair), &
@@ -480,13 +481,13 @@ contains
          end if
          ! predicted spring forces (the linearisation the solve used) ...
          call an%springs%predicted_forces(m%contact%pairs, rvec, ddu, rpred)
-         dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/max(maxval(abs(att%du)), tiny(1.0_dp))
+         att%dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/max(maxval(abs(att%du)), tiny(1.0_dp))
          ddu = 0.0_dp
          ! ... against the actual ones, after the mode checks
          call update_modes(again)
          if (again) cycle
          if (att%rnorm <= m%contact%opts%tol_residual .and. &
-             (.not. an%returning .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
+             (.not. an%returning .or. att%dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
             if (.not. st%has_ideal) then
                att%converged = .true.
                exit
@@ -578,8 +579,9 @@ contains
                          'factor, or use OPTIONS AUTOINC')
       else if (an%returning .or. st%has_ideal) then
          call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
-                         itoa(att%solutions)//' solutions (relative out-of-balance force '// &
-                         rtoa(att%rnorm)//'); reduce the increment size, raise CONTACT REPEATS or use '// &
+                         itoa(att%solutions)//' solutions (relative out-of-balance force '//rtoa(att%rnorm)// &
+                         ', relative displacement correction '//rtoa(att%dnorm)//', both must fall within '// &
+                         'CONVERGE); reduce the increment size, raise CONTACT REPEATS or use '// &
                          'OPTIONS AUTOINC')
       end if
    end subroutine failed_convergence
