@@ -36,6 +36,7 @@ module deck_contact
    type :: contact_cursor_t
       integer :: mode = DATA_NONE
       integer :: iside = 0
+      integer :: nif = 0            !! interfaces opened so far (cs%ifaces has room for more)
    end type contact_cursor_t
 
 contains
@@ -170,6 +171,8 @@ contains
                call read_contact_data(d, ic, m%npoin, cs, cur)
             end if
          end do
+         ! the interfaces grew by doubling: cut to those opened
+         if (cur%nif < size(cs%ifaces)) cs%ifaces = cs%ifaces(1:cur%nif)
          if (size(cs%ifaces) == 0) then
             call d%error_at(ickw, 1, 'E-CONTACT', 'CONTACT: the block defines no interface (expected at least NORMAL, '// &
                             'FRICTION and SURFACE or PAIRS cards)')
@@ -197,9 +200,9 @@ contains
       call d%get_word(ic, 1, 10, 'CONTACT', 'KEYWORD', key, ok)
       cur%mode = DATA_NONE
       ! cards of an interface before the first INTERFACE card open interface 1
-      if (key == 'INTERFACE' .or. (size(cs%ifaces) == 0 .and. any(key == iface_cards))) &
-         call new_interface(cs, d%cards(ic)%line)
-      nif = size(cs%ifaces)
+      if (key == 'INTERFACE' .or. (cur%nif == 0 .and. any(key == iface_cards))) &
+         call new_interface(cs, cur, d%cards(ic)%line)
+      nif = cur%nif
       select case (key)
       case ('INTERFACE')
          continue   ! opened above
@@ -270,7 +273,7 @@ contains
          ncard = ncard + 1
       end do
       if (ncard == 0) return
-      nif = size(cs%ifaces)
+      nif = cur%nif
       select case (cur%mode)
       case (DATA_SURFACE)
          associate (surf => cs%ifaces(nif)%surf(cur%iside))
@@ -322,22 +325,27 @@ contains
       type(contact_spec_t), intent(in) :: cs
       type(contact_cursor_t), intent(in) :: cur
       ! the data cards of SURFACE, PAIRS and RIGID POLYLINE are read by read_data_run
-      if (cur%mode /= DATA_NONE .or. npoin < 0 .or. size(cs%ifaces) < 0) return
+      if (cur%mode /= DATA_NONE .or. npoin < 0 .or. size(cs%rigids) < 0) return
       call d%error_at(ic, 1, 'E-CARD', 'CONTACT: a data card must follow a SURFACE, PAIRS or RIGID POLYLINE '// &
                       'card, found "'//shown(trim(d%cards(ic)%text))//'"')
    end subroutine read_contact_data
 
    !> INTERFACE card (or the first card of an interface): a new interface.
-   subroutine new_interface(cs, line)
+   subroutine new_interface(cs, cur, line)
       type(contact_spec_t), intent(inout) :: cs
+      type(contact_cursor_t), intent(inout) :: cur   !! nif: the interfaces opened so far
       integer, intent(in) :: line          !! deck line of the card that opens it
       type(iface_spec_t), allocatable :: tmp(:)
       integer :: nif
-      nif = size(cs%ifaces)
-      allocate (tmp(nif + 1))
-      if (nif > 0) tmp(1:nif) = cs%ifaces(1:nif)
-      call move_alloc(tmp, cs%ifaces)
+      nif = cur%nif
+      if (nif == size(cs%ifaces)) then
+         ! room doubles (cut to size at the end of the block): linear in the cards
+         allocate (tmp(max(4, 2*nif)))
+         if (nif > 0) tmp(1:nif) = cs%ifaces(1:nif)
+         call move_alloc(tmp, cs%ifaces)
+      end if
       nif = nif + 1
+      cur%nif = nif
       cs%ifaces(nif)%line = line
       cs%ifaces(nif)%law%line = line
       allocate (cs%ifaces(nif)%pairs(0))
@@ -720,7 +728,7 @@ contains
       logical :: ok
       type(rigid_body_t) :: rb
       ok = .true.
-      nif = size(cs%ifaces)
+      nif = cur%nif
       if (cs%ifaces(nif)%law%rigid > 0) then
          call d%error_at(ic, 1, 'E-RIGID', 'CONTACT/RIGID: this interface already has a rigid body '// &
                          '(one RIGID card per interface; start another INTERFACE)')
