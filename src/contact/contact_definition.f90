@@ -233,8 +233,11 @@ contains
          lf = 0.0_dp
          ll = 0.0_dp
       end select
-      call check('NORMAL', 'CN', ll + log(law%cn_in) + law%m_in*lf)
-      call check('NORMAL', 'CN2', ll + log(law%cn2_in) + law%m2_in*lf)
+      ! the factors f^m, f^m2, f^(1-S) on their own, then the constants
+      call check('NORMAL', 'the unit factor f^M', law%m_in*lf)
+      call check('NORMAL', 'the unit factor f^M2', law%m2_in*lf)
+      call check('NORMAL', 'CN in model units', ll + log(law%cn_in) + law%m_in*lf)
+      call check('NORMAL', 'CN2 in model units', ll + log(law%cn2_in) + law%m2_in*lf)
       s_in = law%s_in
       if (.not. law%s_given) s_in = 1.0_dp - law%m_in
       if (law%r_given) then
@@ -247,17 +250,20 @@ contains
       else
          return
       end if
-      call check('TANGENT', 'R', ll + r_lo + (1.0_dp - s_in)*lf)
-      call check('TANGENT', 'R', ll + r_hi + (1.0_dp - s_in)*lf)
+      call check('TANGENT', 'the unit factor f^(1-S)', (1.0_dp - s_in)*lf)
+      call check('TANGENT', 'R in the deck''s units', r_lo)
+      call check('TANGENT', 'R in the deck''s units', r_hi)
+      call check('TANGENT', 'R in model units', ll + r_lo + (1.0_dp - s_in)*lf)
+      call check('TANGENT', 'R in model units', ll + r_hi + (1.0_dp - s_in)*lf)
    contains
       subroutine check(card, name, lx)
          character(len=*), intent(in) :: card, name
          real(dp), intent(in) :: lx        !! natural logarithm of the constant in model units
          if (.not. fit) return
          if (lx > log(tiny(1.0_dp)) + 1.0_dp .and. lx < log(huge(1.0_dp)) - 1.0_dp) return
-         call errors%add('E-CONTACT', 'CONTACT/'//card//': '//name//' converted to model units would be e^'// &
-                         rtoa(lx)//', beyond the range of the arithmetic: the constant or its exponent is out '// &
-                         'of range (the unit factor is raised to the exponent)', file=file, line=line)
+         call errors%add('E-CONTACT', 'CONTACT/'//card//': '//name//' would be e^'//rtoa(lx)// &
+                         ', beyond the range of the arithmetic: the constant or its exponent is out of range '// &
+                         '(the unit conversion raises the pressure factor to the exponent)', file=file, line=line)
          fit = .false.
       end subroutine check
    end function law_constants_fit
