@@ -24,6 +24,7 @@
 module gmsh_reader
    use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
                                             ieee_set_flag
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
    use errors, only: error_list_t
    use strings, only: itoa, rtoa, same_name
@@ -399,7 +400,8 @@ contains
             read (tok, *, iostat=ios) x(k)
             call ieee_set_flag(ieee_overflow, .false.)
             if (halt) call ieee_set_halting_mode(ieee_overflow, .true.)
-            if (ios == 0 .and. .not. (abs(x(k)) <= huge(x(k)))) then
+            ! (ieee_is_finite: an ordered comparison with a NaN would trap in Debug builds)
+            if (ios == 0 .and. .not. ieee_is_finite(x(k))) then
                ! NaN, Inf, or out of range: every real read from a file is finite
                call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'//short(tok)// &
                                '": not a finite number', file=t%path, line=il)
