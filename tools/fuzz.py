@@ -129,6 +129,9 @@ def cmd_inproc(a):
             dest = keep(cdir, a.findings, f'hang_inproc_{seed}')
             print(f'seed {seed}: no end within the time limit; input kept in {dest}')
         chunk += 1
+        if a.progress:
+            print('progress ' + ' '.join(f'{k}={v}' for k, v in totals.items()) +
+                  f' max_seconds={max_s:.3f} wall_seconds={time.time() - t0:.0f}', flush=True)
     shutil.rmtree(work, ignore_errors=True)
     print(f'inproc corpus={n} ' + ' '.join(f'{k}={v}' for k, v in totals.items()) +
           f' max_seconds={max_s:.3f} wall_seconds={time.time() - t0:.0f}')
@@ -200,9 +203,12 @@ def cmd_process(a):
             max_s = max(max_s, dt)
             if kind in bad_kinds:
                 dest = keep(dirs[i - 1], a.findings, f'{kind}_process_{seed}_{i}')
-                print(f'seed {seed} run {i}: {kind}: {detail.strip()[:400]} (kept in {dest})')
+                print(f'seed {seed} run {i}: {kind}: {detail.strip()[:400]} (kept in {dest})', flush=True)
         done += runs
         batch += 1
+        if a.progress:
+            print(f'progress runs={done} ' + ' '.join(f'{k}={v}' for k, v in sorted(counts.items())) +
+                  f' max_seconds={max_s:.2f} wall_seconds={time.time() - t0:.0f}', flush=True)
     shutil.rmtree(work, ignore_errors=True)
     print(f'process corpus={n} runs={done} ' + ' '.join(f'{k}={v}' for k, v in sorted(counts.items())) +
           f' max_seconds={max_s:.2f} wall_seconds={time.time() - t0:.0f}')
@@ -223,6 +229,7 @@ def main():
         s.add_argument('--findings', default='fuzz-findings', help='where inputs that break the contract go')
         s.add_argument('--tmp', default=None, help='scratch directory (default: the system\'s)')
         s.add_argument('--timeout', type=float, default=60.0, help='seconds before a run counts as a hang')
+        s.add_argument('--progress', action='store_true', help='print the totals after every chunk')
         s.add_argument('--chunk', type=int, default=20000 if name == 'inproc' else 500,
                        help='inputs per fuzzer process (a crash loses the rest of its chunk)')
         if name == 'process':
