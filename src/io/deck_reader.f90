@@ -1080,6 +1080,13 @@ contains
          do k = 1, ncase
             c1 = 6 + 10*(k - 1)
             call d%get_real(ic, c1, c1 + 9, 'INCREMENTS', 'LAMBDA'//itoa(k), val, ok, default=prev(k))
+            ! the ramp from the previous factor takes differences: bounded so that they cannot overflow
+            if (ok .and. abs(val) > 0.25_dp*huge(val)) then
+               call d%error_at(ic, c1, 'E-RANGE', 'INCREMENTS: LAMBDA'//itoa(k)//' (columns '//itoa(c1)//'-'// &
+                               itoa(c1 + 9)//') expected a load factor of magnitude at most '// &
+                               rtoa(0.25_dp*huge(val))//', found '//rtoa(val))
+               ok = .false.
+            end if
             target(k) = val
          end do
          call check_tail(d, ic, 6 + 10*ncase, 'INCREMENTS', 'NSTEP and '//itoa(ncase)// &
@@ -1092,7 +1099,7 @@ contains
          end if
          if (nincs + nstep > ubound(lam, 2)) call grow(lam, nincs + nstep)
          do i = 1, nstep
-            lam(:, nincs + i) = prev + (target - prev)*real(i, dp)/real(nstep, dp)
+            lam(:, nincs + i) = prev + (target - prev)*(real(i, dp)/real(nstep, dp))
          end do
          nincs = nincs + nstep
          prev = target
