@@ -19,7 +19,10 @@ deck=$src/tests/decks/contact/v1_plane_q4.dat
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
 trace='Fortran runtime|Backtrace|SIGSEGV|Segmentation|internal error'
+# a tmpfs left mounted by an interrupted run would make the clean-up fail
+umount "$work/output_faults/mnt" 2>/dev/null
 rm -rf "$work/output_faults" && mkdir -p "$work/output_faults" && cd "$work/output_faults" || exit 1
+trap 'umount "$work/output_faults/mnt" 2>/dev/null' EXIT
 
 # 1. outputs that are inputs
 cp "$src/tests/gmsh/strip22.dat" "$src/tests/gmsh/strip22.msh" .
