@@ -122,7 +122,9 @@ contains
          write (u, '(/a)') ' EDGE LOADS (nodes in element order: start, end, mid)'
          do k = 1, size(m%edge_loads)
             associate (e => m%edge_loads(k))
-               write (u, '(a,i0,a,3i7,a,i0)') '   element ', e%ielem, '  nodes', e%nodes(1:e%nn), '  case ', e%icase
+               ! e%nn (2 or 3) node fields: a fixed count would read the text after them as one
+               write (u, '(a,i0,a,'//itoa(e%nn)//'i7,a,i0)') '   element ', e%ielem, '  nodes', e%nodes(1:e%nn), &
+                  '  case ', e%icase
                write (u, '(a,3es14.5)') '      pressure  ', e%pn(1:e%nn)
                write (u, '(a,3es14.5)') '      tangential', e%pt(1:e%nn)
             end associate
@@ -137,7 +139,7 @@ contains
       end if
       write (u, '(/a)') ' LOAD HISTORY (total factor of each load case after each increment)'
       do i = 1, m%nincs
-         write (u, '(i7, 6f12.5)') i, m%lambda(:, i)
+         write (u, '(i7, *(f12.5))') i, m%lambda(:, i)
       end do
    end subroutine list_input
 
@@ -162,7 +164,7 @@ contains
       type(body_fields_t), intent(in) :: body
       integer :: ip
       write (u, '(/a)') repeat('-', 78)
-      write (u, '(a,i0,a,6f11.5)') ' INCREMENT ', step%step, '   load factor(s):', step%lambda
+      write (u, '(a,i0,a,*(f11.5))') ' INCREMENT ', step%step, '   load factor(s):', step%lambda
       write (u, '(a)') repeat('-', 78)
       write (u, '(/a)') ' DISPLACEMENTS'
       write (u, '(a)') '   NODE          X-DISP          Y-DISP'
