@@ -12,7 +12,7 @@ module deck_lexer
                                             ieee_set_flag
    use kinds, only: dp
    use errors, only: error_list_t
-   use strings, only: upper, itoa
+   use strings, only: upper, itoa, rtoa
    implicit none
    private
 
@@ -46,6 +46,7 @@ module deck_lexer
       procedure :: get_int => deck_get_int
       procedure :: get_real => deck_get_real
       procedure :: get_word => deck_get_word
+      procedure :: check_magnitude => deck_check_magnitude
       procedure :: error_at => deck_error_at
       procedure :: error_eof => deck_error_eof
       procedure :: field_text => deck_field_text
@@ -416,6 +417,23 @@ contains
          end if
       end if
    end subroutine deck_get_word
+
+   !> A load or a prescribed displacement read from columns c1.. of card ic
+   !! must not exceed sqrt(huge) in magnitude: the analysis multiplies it by
+   !! stiffnesses, which the material check bounds by sqrt(huge) as well, so
+   !! that the product stays representable.  An error at the field otherwise.
+   subroutine deck_check_magnitude(this, ic, c1, card, field, val, ok)
+      class(deck_t), intent(inout) :: this
+      integer, intent(in) :: ic, c1              !! card, first column of the field
+      character(len=*), intent(in) :: card, field
+      real(dp), intent(in) :: val
+      logical, intent(inout) :: ok               !! set to .false. on error
+      if (.not. ok) return
+      if (abs(val) <= sqrt(huge(val))) return
+      call this%error_at(ic, c1, 'E-RANGE', card//': '//field//' = '//rtoa(val)//' is beyond '// &
+                         rtoa(sqrt(huge(val)))//' in magnitude: the analysis multiplies it by stiffnesses')
+      ok = .false.
+   end subroutine deck_check_magnitude
 
    !> Record an error located at card ic, column col.
    !! Only the first field-format error (E-NUMBER, E-MISSING, E-EXTRA) of a

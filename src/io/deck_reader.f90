@@ -688,6 +688,8 @@ contains
          call d%get_real(ic, 21, 30, 'RESTRAINTS', 'UY', uy, ok, default=0.0_dp)
          call d%get_int(ic, 31, 35, 'RESTRAINTS', 'CASE', icase, ok, default=1)
          call check_tail(d, ic, 36, 'RESTRAINTS', 'NODE, CODE, UX, UY, CASE in columns 1-35', ok)
+         call d%check_magnitude(ic, 11, 'RESTRAINTS', 'UX', ux, ok)
+         call d%check_magnitude(ic, 21, 'RESTRAINTS', 'UY', uy, ok)
          if (n >= size(list)) list = [list, list]
          n = n + 1
          list(n) = restraint_t()
@@ -910,6 +912,8 @@ contains
       call d%get_real(ic, 16, 25, 'LOADS/POINT', 'FY', fy, ok, default=0.0_dp)
       call d%get_int(ic, 26, 30, 'LOADS/POINT', 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 31, 'LOADS/POINT', 'NODE, FX, FY, CASE in columns 1-30', ok)
+      call d%check_magnitude(ic, 6, 'LOADS/POINT', 'FX', fx, ok)
+      call d%check_magnitude(ic, 16, 'LOADS/POINT', 'FY', fy, ok)
       if (.not. ok) return
       if (node < 1 .or. node > m%npoin) then
          call d%error_at(ic, 1, 'E-RANGE', 'LOADS/POINT: NODE (columns 1-5) expected a node number 1..'// &
@@ -948,6 +952,10 @@ contains
       end do
       call d%get_int(ic, 81, 85, card, 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 86, card, 'IELEM, N1-N3, PN1-PN3, PT1-PT3, CASE in columns 1-85', ok)
+      do k = 1, 3
+         call d%check_magnitude(ic, 11 + 10*k, card, 'PN'//itoa(k), pn(k), ok)
+         call d%check_magnitude(ic, 41 + 10*k, card, 'PT'//itoa(k), pt(k), ok)
+      end do
       if (.not. ok) return
       if (ielem < 1 .or. ielem > m%nelem) then
          call d%error_at(ic, 1, 'E-RANGE', card//': IELEM (columns 1-5) expected an element number 1..'// &
@@ -1037,6 +1045,8 @@ contains
       call d%get_real(ic, 16, 25, 'LOADS/BODY', 'BY', by, ok, default=0.0_dp)
       call d%get_int(ic, 26, 30, 'LOADS/BODY', 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 31, 'LOADS/BODY', 'MATNO, BX, BY, CASE in columns 1-30', ok)
+      call d%check_magnitude(ic, 6, 'LOADS/BODY', 'BX', bx, ok)
+      call d%check_magnitude(ic, 16, 'LOADS/BODY', 'BY', by, ok)
       if (.not. ok) return
       if (imat < 0 .or. imat > m%nmats) then
          call d%error_at(ic, 1, 'E-RANGE', 'LOADS/BODY: MATNO (columns 1-5) expected 0 (all) or 1..'// &

@@ -113,6 +113,8 @@ contains
       call d%get_real(ic, 46, 55, card, 'UY', uy, ok, default=0.0_dp)
       call d%get_int(ic, 56, 60, card, 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 61, card, 'GROUP, NAME, CODE, UX, UY, CASE in columns 1-60', ok)
+      call d%check_magnitude(ic, 36, card, 'UX', ux, ok)
+      call d%check_magnitude(ic, 46, card, 'UY', uy, ok)
       if (.not. ok) return
       ks = find_node_set(m, name)
       if (ks == 0) then
@@ -255,6 +257,8 @@ contains
       call d%get_real(ic, 41, 50, card, names(2), v(2), ok, default=0.0_dp)
       call d%get_int(ic, 51, 55, card, 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 56, card, 'GROUP, NAME, '//names(1)//', '//names(2)//', CASE in columns 1-55', ok)
+      call d%check_magnitude(ic, 31, card, names(1), v(1), ok)
+      call d%check_magnitude(ic, 41, card, names(2), v(2), ok)
       if (.not. ok) return
       if (edges) then
          ks = find_edge_set(m, name)
