@@ -799,7 +799,8 @@ contains
          if (e > 0.0_dp .and. nu > -1.0_dp .and. nu < 0.5_dp .and. t > 0.0_dp) then
             if (.not. stiffness_fits(e, nu, t)) call d%error_at(ic, 6, 'E-MATERIAL', 'MATERIALS: E = '//rtoa(e)// &
                 ', NU = '//rtoa(nu)//' and THICK = '//rtoa(t)//' give elastic constants beyond '// &
-                rtoa(sqrt(huge(1.0_dp)))//' (the analysis multiplies two stiffnesses): out of range')
+                rtoa(sqrt(huge(1.0_dp)))//' or below '//rtoa(1.0_dp/sqrt(huge(1.0_dp)))// &
+                ' (the analysis multiplies loads by compliances and displacements by stiffnesses): out of range')
          end if
          m%mats(imat) = material_t(young=e, poiss=nu, thick=t, line=d%cards(ic)%line)
       end do
@@ -813,21 +814,25 @@ contains
 
    !> Whether the constants of the elasticity matrix D (MODPS: E/(1-nu^2),
    !! E(1-nu)/((1+nu)(1-2nu)), its nu/(1-nu) multiple, G = E/(2(1+nu))),
-   !! times the thickness, stay below sqrt(huge): the analysis forms products
-   !! of two stiffnesses (the Schur complement K_cb K_bb^-1 K_bc, K u), which
-   !! must not overflow.  Evaluated on logarithms, so that the check itself
-   !! cannot overflow.
+   !! times the thickness, stay within [1/sqrt(huge), sqrt(huge)]: the analysis
+   !! multiplies displacements by stiffnesses (K u, the Schur complement
+   !! K_cb K_bb^-1 K_bc) and loads by compliances (u = K^-1 f), and loads and
+   !! prescribed displacements are bounded by sqrt(huge) (check_magnitude), so
+   !! that every such product stays representable.  Evaluated on logarithms,
+   !! so that the check itself cannot overflow.
    !! Ref: Hinton & Owen, *Finite Element Programming*, routine MODPS.
    pure logical function stiffness_fits(e, nu, t)
       real(dp), intent(in) :: e      !! Young's modulus [stress], > 0
       real(dp), intent(in) :: nu     !! Poisson's ratio, in (-1, 0.5)
       real(dp), intent(in) :: t      !! thickness [length], > 0
-      real(dp) :: lmax
+      real(dp) :: lmax, lmin
       lmax = log(e) + log(max(t, 1.0_dp)) + max(-log(1.0_dp - nu*nu), &
              log(1.0_dp - nu) - log(1.0_dp + nu) - log(1.0_dp - 2.0_dp*nu), &
              log(max(abs(nu), tiny(1.0_dp))) - log(1.0_dp + nu) - log(1.0_dp - 2.0_dp*nu), &
              -log(2.0_dp*(1.0_dp + nu)))
-      stiffness_fits = lmax < 0.5_dp*log(huge(1.0_dp))
+      ! the diagonal constants are at least G = E/(2(1+nu)) > E/3
+      lmin = log(e) + log(min(t, 1.0_dp)) - log(3.0_dp)
+      stiffness_fits = lmax < 0.5_dp*log(huge(1.0_dp)) .and. lmin > -0.5_dp*log(huge(1.0_dp))
    end function stiffness_fits
 
    ! ------------------------------------------------------------------ LOADS
