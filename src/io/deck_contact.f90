@@ -725,6 +725,8 @@ contains
       character(len=:), allocatable :: shape
       integer :: nref, nif
       real(dp) :: x(4)
+      integer :: k
+      character(len=2), parameter :: fnames(4) = ['X1', 'Y1', 'X2', 'Y2'], cnames(3) = ['XC', 'YC', 'R ']
       logical :: ok
       type(rigid_body_t) :: rb
       ok = .true.
@@ -751,6 +753,9 @@ contains
          call d%get_real(ic, 51, 60, 'CONTACT/RIGID', 'X2', x(3), ok)
          call d%get_real(ic, 61, 70, 'CONTACT/RIGID', 'Y2', x(4), ok)
          call tail(d, ic, 71, 'FLAT, NREF, X1, Y1, X2, Y2 in columns 11-70', ok)
+         do k = 1, 4
+            call d%check_coordinate(ic, 21 + 10*k, 'CONTACT/RIGID', trim(fnames(k)), x(k), ok)
+         end do
          if (.not. ok) return
          rb%shape = RIGID_POLYLINE
          rb%xy = reshape(x, [2, 2])
@@ -759,6 +764,9 @@ contains
          call d%get_real(ic, 41, 50, 'CONTACT/RIGID', 'YC', x(2), ok)
          call d%get_real(ic, 51, 60, 'CONTACT/RIGID', 'R', x(3), ok)
          call tail(d, ic, 61, 'CIRCLE, NREF, XC, YC, R in columns 11-60', ok)
+         do k = 1, 3
+            call d%check_coordinate(ic, 21 + 10*k, 'CONTACT/RIGID', trim(cnames(k)), x(k), ok)
+         end do
          if (.not. ok) return
          if (.not. (x(3) > 0.0_dp)) then
             call d%error_at(ic, 51, 'E-RIGID', 'CONTACT/RIGID: R (columns 51-60) expected a positive radius, '// &
@@ -793,6 +801,8 @@ contains
       ok = .true.
       call d%get_real(ic, 1, 10, 'CONTACT/RIGID', 'X', xy(1), ok)
       call d%get_real(ic, 11, 20, 'CONTACT/RIGID', 'Y', xy(2), ok)
+      call d%check_coordinate(ic, 1, 'CONTACT/RIGID', 'X', xy(1), ok)
+      call d%check_coordinate(ic, 11, 'CONTACT/RIGID', 'Y', xy(2), ok)
       call tail(d, ic, 21, 'X, Y of a vertex in columns 1-20', ok)
    end subroutine read_vertex
 

@@ -16,7 +16,11 @@ module deck_lexer
    implicit none
    private
 
-   public :: card_t, deck_t, is_integer_text, is_real_text, shown, MAX_DECK_BYTES
+   public :: card_t, deck_t, is_integer_text, is_real_text, shown, MAX_DECK_BYTES, MAX_COORDINATE
+
+   !> Largest coordinate (magnitude) of a node or a rigid profile: the geometry squares sums of
+   !! coordinate differences (lengths, the element size squared), which must stay representable.
+   real(dp), parameter :: MAX_COORDINATE = 0.25_dp*sqrt(huge(1.0_dp))
 
    !> Largest deck read (bytes): far above any mesh a fixed-format deck holds (5-digit node numbers).
    integer, parameter :: MAX_DECK_BYTES = 256*2**20
@@ -47,6 +51,7 @@ module deck_lexer
       procedure :: get_real => deck_get_real
       procedure :: get_word => deck_get_word
       procedure :: check_magnitude => deck_check_magnitude
+      procedure :: check_coordinate => deck_check_coordinate
       procedure :: error_at => deck_error_at
       procedure :: error_eof => deck_error_eof
       procedure :: field_text => deck_field_text
@@ -434,6 +439,21 @@ contains
                          rtoa(sqrt(huge(val)))//' in magnitude: the analysis multiplies it by stiffnesses')
       ok = .false.
    end subroutine deck_check_magnitude
+
+   !> A coordinate (of a node, of a rigid profile) read from columns c1.. of
+   !! card ic must not exceed MAX_COORDINATE in magnitude.
+   subroutine deck_check_coordinate(this, ic, c1, card, field, val, ok)
+      class(deck_t), intent(inout) :: this
+      integer, intent(in) :: ic, c1              !! card, first column of the field
+      character(len=*), intent(in) :: card, field
+      real(dp), intent(in) :: val
+      logical, intent(inout) :: ok               !! set to .false. on error
+      if (.not. ok) return
+      if (abs(val) <= MAX_COORDINATE) return
+      call this%error_at(ic, c1, 'E-RANGE', card//': '//field//' = '//rtoa(val)//' is beyond '// &
+                         rtoa(MAX_COORDINATE)//' in magnitude: the geometry squares lengths')
+      ok = .false.
+   end subroutine deck_check_coordinate
 
    !> Record an error located at card ic, column col.
    !! Only the first field-format error (E-NUMBER, E-MISSING, E-EXTRA) of a

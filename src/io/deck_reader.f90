@@ -622,6 +622,8 @@ contains
          call d%get_int(ic, 1, 5, 'NODES', 'IPOIN', ipoin, ok)
          call d%get_real(ic, 6, 15, 'NODES', 'X', x, ok)
          call d%get_real(ic, 16, 25, 'NODES', 'Y', y, ok)
+         call d%check_coordinate(ic, 6, 'NODES', 'X', x, ok)
+         call d%check_coordinate(ic, 16, 'NODES', 'Y', y, ok)
          if (len_trim(d%field_text(ic, 26, 10000)) > 0) then
             call d%error_at(ic, 26, 'E-EXTRA', 'NODES: expected IPOIN, X, Y in columns 1-25, found more: "'// &
                             shown(trim(adjustl(d%field_text(ic, 26, 10000))))//'"')

@@ -30,6 +30,7 @@ module gmsh_reader
    use strings, only: itoa, rtoa, same_name
    use model, only: model_t, node_set_t, edge_set_t, MAX_NODE
    use topology, only: element_edge_nodes, nedges
+   use deck_lexer, only: MAX_COORDINATE
    implicit none
    private
 
@@ -401,13 +402,22 @@ contains
             call ieee_set_flag(ieee_overflow, .false.)
             if (halt) call ieee_set_halting_mode(ieee_overflow, .true.)
             ! (ieee_is_finite: an ordered comparison with a NaN would trap in Debug builds)
-            if (ios == 0 .and. .not. ieee_is_finite(x(k))) then
-               ! NaN, Inf, or out of range: every real read from a file is finite
-               call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'//short(tok)// &
-                               '": not a finite number', file=t%path, line=il)
-               x(k) = 0.0_dp
-               ok = .false.
-               return
+            if (ios == 0) then
+               if (.not. ieee_is_finite(x(k))) then
+                  ! NaN, Inf, or out of range: every real read from a file is finite
+                  call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'//short(tok)// &
+                                  '": not a finite number', file=t%path, line=il)
+                  ok = .false.
+               else if (abs(x(k)) > MAX_COORDINATE) then
+                  call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'//short(tok)// &
+                                  '": beyond '//rtoa(MAX_COORDINATE)//' in magnitude (the geometry squares '// &
+                                  'lengths)', file=t%path, line=il)
+                  ok = .false.
+               end if
+               if (.not. ok) then
+                  x(k) = 0.0_dp
+                  return
+               end if
             end if
          end associate
          if (ios /= 0) then
