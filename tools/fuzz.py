@@ -78,7 +78,8 @@ def write_corpus(path):
 def build_target(build, target):
     subprocess.run(['cmake', '--build', build, '--target', target, '-j2'], check=True,
                    stdout=subprocess.DEVNULL)
-    return os.path.join(build, 'tests', 'fuzz', target) if target == 'fuzz_readers' else os.path.join(build, target)
+    path = os.path.join(build, 'tests', 'fuzz', target) if target == 'fuzz_readers' else os.path.join(build, target)
+    return os.path.abspath(path)   # the runs have their own working directories
 
 
 def keep(src_dir, findings, tag):
@@ -89,7 +90,7 @@ def keep(src_dir, findings, tag):
 
 
 def cmd_inproc(a):
-    exe = a.fuzzer or build_target(a.build, 'fuzz_readers')
+    exe = os.path.abspath(a.fuzzer) if a.fuzzer else build_target(a.build, 'fuzz_readers')
     os.makedirs(a.findings, exist_ok=True)
     work = tempfile.mkdtemp(prefix='k2d_fuzz_', dir=a.tmp)
     corpus = os.path.join(work, 'corpus.txt')
@@ -177,8 +178,8 @@ def classify(run_dir, exe, timeout):
 
 
 def cmd_process(a):
-    exe = a.program or build_target(a.build, 'kontakt2d')
-    fuzzer = a.fuzzer or build_target(a.build, 'fuzz_readers')
+    exe = os.path.abspath(a.program) if a.program else build_target(a.build, 'kontakt2d')
+    fuzzer = os.path.abspath(a.fuzzer) if a.fuzzer else build_target(a.build, 'fuzz_readers')
     os.makedirs(a.findings, exist_ok=True)
     work = tempfile.mkdtemp(prefix='k2d_fuzzp_', dir=a.tmp)
     corpus = os.path.join(work, 'corpus.txt')

@@ -1,5 +1,5 @@
 !> The mutation engine of the in-process fuzzer (tests/fuzz/fuzz_readers.f90):
-!! a reproducible random stream (xorshift64*) and mutations of a deck or a
+!! a reproducible random stream (xorshift64) and mutations of a deck or a
 !! gmsh file held as one string.
 !!
 !! The operators know the shape of the input, not its meaning: bytes (any
@@ -11,16 +11,15 @@
 !! truncation.  Several are applied to one input.
 !!
 !! Ref: M. Zalewski, american fuzzy lop, "technical details" (the deterministic
-!! and havoc stages these operators are modelled on); S. Vigna, "An
-!! experimental exploration of Marsaglia's xorshift generators, scrambled",
-!! ACM TOMS 42 (2016) (xorshift64*).
+!! and havoc stages these operators are modelled on); G. Marsaglia,
+!! "Xorshift RNGs", J. Stat. Software 8 (14), 2003 (xorshift64, shifts 12, 25, 27).
 module fuzz_mutation
    use, intrinsic :: iso_fortran_env, only: int64
    implicit none
    private
    public :: rng_t, mutate
 
-   !> xorshift64*: 64 bits of state, a reproducible stream per seed.
+   !> xorshift64: 64 bits of state, a reproducible stream per seed.
    type :: rng_t
       integer(int64) :: s = 88172645463325252_int64
    contains
@@ -65,7 +64,8 @@ contains
       this%s = ieor(this%s, shiftr(this%s, 12))
       this%s = ieor(this%s, shiftl(this%s, 25))
       this%s = ieor(this%s, shiftr(this%s, 27))
-      x = this%s*2685821657736338717_int64
+      ! no multiplication (xorshift64*'s would overflow a signed integer: UBSan reports it)
+      x = this%s
       r = int(modulo(shiftr(x, 16), int(max(n, 1), int64)))
    end function rng_below
 
