@@ -9,7 +9,8 @@
 program kontakt2d
    use kinds, only: stdout, stderr
    use errors, only: error_list_t, status_t, terminate, EXIT_OK, EXIT_INPUT, EXIT_NUMERICAL, EXIT_DOUBTFUL, STAT_INPUT
-   use strings, only: upper
+   use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_ptr, c_associated
+   use strings, only: upper, basename, strip_extension
    use model, only: model_t
    use model_input, only: read_model
    use incremental, only: run_options_t, run_result_t, run_analysis
@@ -71,6 +72,8 @@ program kontakt2d
       call terminate(EXIT_INPUT)
    end if
 
+   call check_output_paths(deck, m, opts)
+
    call run_analysis(m, opts, res, status)
    if (.not. status%ok()) then
       if (.not. res%reported) write (stderr, '(a)') 'kontakt2d: '//status%message
@@ -81,6 +84,75 @@ program kontakt2d
    call terminate(EXIT_OK)
 
 contains
+
+   !> The result file and the listing (as given, or their defaults: the deck's
+   !! name with .h5, the result file's with .lis) must not be an input file
+   !! (the deck, its .msh): writing them would destroy it.  A command-line
+   !! error (exit 2) before anything is written.
+   subroutine check_output_paths(deck, m, opts)
+      character(len=*), intent(in) :: deck
+      type(model_t), intent(in) :: m
+      type(run_options_t), intent(in) :: opts
+      character(len=:), allocatable :: res_path, lis_path
+      res_path = opts%results_path
+      if (len(res_path) == 0) res_path = strip_extension(basename(deck))//'.h5'
+      lis_path = opts%listing_path
+      if (len(lis_path) == 0) lis_path = strip_extension(res_path)//'.lis'
+      call refuse_input(deck, m, 'result file', res_path, '-o')
+      if (m%listing_level /= 'NONE') call refuse_input(deck, m, 'listing', lis_path, '-l')
+   end subroutine check_output_paths
+
+   !> An output path that is the deck or its mesh file: a command-line error.
+   subroutine refuse_input(deck, m, what, out, option)
+      character(len=*), intent(in) :: deck
+      type(model_t), intent(in) :: m
+      character(len=*), intent(in) :: what, out, option
+      if (same_file(out, deck)) call usage_error('the '//what//' "'//out//'" is the input deck: '// &
+                                                 'give another path with '//option)
+      if (allocated(m%mesh_file)) then
+         if (same_file(out, m%mesh_file)) call usage_error('the '//what//' "'//out//'" is the mesh file '// &
+                                                           'of the deck: give another path with '//option)
+      end if
+   end subroutine refuse_input
+
+   !> Whether two paths name the same existing file (realpath(3) of both).
+   logical function same_file(a, b)
+      character(len=*), intent(in) :: a, b
+      character(len=:), allocatable :: ra, rb
+      same_file = .false.
+      ra = real_path(a)
+      if (len(ra) == 0) return
+      rb = real_path(b)
+      same_file = ra == rb
+   end function same_file
+
+   !> The canonical absolute path of an existing file, '' if there is none.
+   function real_path(path) result(r)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: r
+      interface
+         function c_realpath(p, resolved) bind(C, name='realpath') result(q)
+            import :: c_char, c_ptr
+            character(kind=c_char), intent(in) :: p(*)
+            character(kind=c_char), intent(out) :: resolved(*)
+            type(c_ptr) :: q
+         end function c_realpath
+      end interface
+      character(kind=c_char) :: buf(4097)
+      integer :: n
+      buf = c_null_char
+      if (.not. c_associated(c_realpath(path//c_null_char, buf))) then
+         r = ''
+         return
+      end if
+      n = 0
+      do while (n < size(buf) - 1)
+         if (buf(n + 1) == c_null_char) exit
+         n = n + 1
+      end do
+      allocate (character(len=n) :: r)
+      r = transfer(buf(1:n), r)
+   end function real_path
 
    function get_arg(k) result(s)
       integer, intent(in) :: k

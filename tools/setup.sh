@@ -8,6 +8,9 @@ libmumps-seq-dev libhdf5-dev hdf5-tools gmsh python3 python3-h5py python3-numpy 
 # K2D_MPI=1: the MPI build instead (cmake -DKONTAKT2D_MPI=ON, in build-mpi/; docs/parallel.md),
 # with the MPI MUMPS and OpenMPI.
 K2D_MPI=${K2D_MPI:-0}
+# K2D_SANITIZE=1: AddressSanitizer and UBSan in every target (cmake -DKONTAKT2D_SANITIZE=ON;
+# tools/test.sh builds it in build-<type>-asan/).
+K2D_SANITIZE=${K2D_SANITIZE:-0}
 [ "$K2D_MPI" = 1 ] && K2D_PACKAGES="$K2D_PACKAGES libmumps-dev libopenmpi-dev openmpi-bin"
 # Python tools run on Debian's interpreter with Debian's packages.
 K2D_PYTHON=/usr/bin/python3
@@ -38,6 +41,7 @@ k2d_build() {
   local type=${1:-Release} dir=${2:-$K2D_ROOT/build}
   local mpi=""
   [ "$K2D_MPI" = 1 ] && mpi="-DKONTAKT2D_MPI=ON"
+  [ "$K2D_SANITIZE" = 1 ] && mpi="$mpi -DKONTAKT2D_SANITIZE=ON"
   if [ ! -f "$dir/CMakeCache.txt" ]; then
     k2d_log "configuring $type build in $dir ${mpi}"
     cmake -S "$K2D_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE="$type" $mpi >&2

@@ -22,7 +22,7 @@ module contact_definition
    use strings, only: itoa, rtoa
    use model, only: model_t, NTYPE_AXISYMMETRIC
    use contact_types, only: contact_pair_t, interface_t, rigid_body_t, LAW_ROUGH, PAIR_NODE, PAIR_RIGID, &
-                            MATCH_SEGMENT, RIGID_CIRCLE
+                            MATCH_SEGMENT, RIGID_CIRCLE, UNITS_KGF_UM, UNITS_N_UM, KGF_PER_NMM2
    use contact_spec, only: iface_spec_t
    use contact_laws, only: convert_interface
    use contact_pairing, only: node_pairs, projected_pairs, E_COARSE_SIDE
@@ -75,7 +75,7 @@ contains
             if (.not. ok) cycle
             m%contact%ifaces(i) = s%law
             m%contact%ifaces(i)%sides_swapped = swapped
-            call define_law(young, nu, pairs(np0 + 1:), m%contact%ifaces(i))
+            call define_law(young, nu, pairs(np0 + 1:), m%contact%ifaces(i), s%line, file, errors)
          end associate
       end do
       if (errors%n > n0) return
@@ -228,10 +228,13 @@ contains
    !! of body A against a rigid body).
    !!
    !! Ref: Altenbach & Buczkowski, eq. (2.8); SPEC §2.4.
-   subroutine define_law(young, nu, pairs, law)
+   subroutine define_law(young, nu, pairs, law, line, file, errors)
       real(dp), intent(in) :: young(:), nu(:)        !! (npoin) E [stress] and nu [-] at every node
       type(contact_pair_t), intent(inout) :: pairs(:)   !! the interface's pairs: estar [stress] set
       type(interface_t), intent(inout) :: law        !! as given; converted to model units, r_t per pair
+      integer, intent(in) :: line                    !! deck line of the interface
+      character(len=*), intent(in) :: file           !! the deck
+      type(error_list_t), intent(inout) :: errors    !! constants out of range (law_constants_fit)
       real(dp) :: nu_pair(size(pairs))
       integer :: k
       do k = 1, size(pairs)
@@ -247,12 +250,75 @@ contains
          end associate
       end do
       if (law%law == LAW_ROUGH) then
+         if (.not. law_constants_fit(law, nu_pair, line, file, errors)) return
          call convert_interface(law, nu_pair)
       else
          allocate (law%r_t(size(nu_pair)))
          law%r_t = 1.0_dp
       end if
    end subroutine define_law
+
+   !> Whether the constants of a rough law in model units, c_n, c_n2 and R,
+   !! are finite and positive with finite reciprocals (the springs divide by
+   !! them).  The unit conversion raises the pressure factor f to the power m
+   !! (c_n = 1e-3 c_n,in f^m, eq. 2.1a in model units), which over- or
+   !! underflows for an exponent out of any physical range (NORMAL 1.0 99999):
+   !! checked on logarithms before anything is computed, and reported as an
+   !! input error at the interface's line.
+   !! Ref: Altenbach & Buczkowski, eqs. (2.1a), (2.8); SPEC §2.4.
+   logical function law_constants_fit(law, nu_pair, line, file, errors) result(fit)
+      type(interface_t), intent(in) :: law          !! constants as given (the *_in fields)
+      real(dp), intent(in) :: nu_pair(:)            !! Poisson's ratio of each pair [-]
+      integer, intent(in) :: line                   !! deck line of the interface
+      character(len=*), intent(in) :: file
+      type(error_list_t), intent(inout) :: errors
+      real(dp) :: lf, ll, s_in, r_lo, r_hi
+      fit = .true.
+      select case (law%units)
+      case (UNITS_KGF_UM)
+         lf = log(KGF_PER_NMM2)
+         ll = log(1.0e-3_dp)
+      case (UNITS_N_UM)
+         lf = 0.0_dp
+         ll = log(1.0e-3_dp)
+      case default
+         lf = 0.0_dp
+         ll = 0.0_dp
+      end select
+      ! the factors f^m, f^m2, f^(1-S) on their own, then the constants
+      call check('NORMAL', 'the unit factor f^M', law%m_in*lf)
+      call check('NORMAL', 'the unit factor f^M2', law%m2_in*lf)
+      call check('NORMAL', 'CN in model units', ll + log(law%cn_in) + law%m_in*lf)
+      call check('NORMAL', 'CN2 in model units', ll + log(law%cn2_in) + law%m2_in*lf)
+      s_in = law%s_in
+      if (.not. law%s_given) s_in = 1.0_dp - law%m_in
+      if (law%r_given) then
+         r_lo = log(law%r_in)
+         r_hi = r_lo
+      else if (size(nu_pair) > 0) then
+         ! eq. (2.8): R = 2 c_n m (1 + nu)
+         r_lo = log(2.0_dp*law%m_in) + log(law%cn_in) + log(1.0_dp + minval(nu_pair))
+         r_hi = log(2.0_dp*law%m_in) + log(law%cn_in) + log(1.0_dp + maxval(nu_pair))
+      else
+         return
+      end if
+      call check('TANGENT', 'the unit factor f^(1-S)', (1.0_dp - s_in)*lf)
+      call check('TANGENT', 'R in the deck''s units', r_lo)
+      call check('TANGENT', 'R in the deck''s units', r_hi)
+      call check('TANGENT', 'R in model units', ll + r_lo + (1.0_dp - s_in)*lf)
+      call check('TANGENT', 'R in model units', ll + r_hi + (1.0_dp - s_in)*lf)
+   contains
+      subroutine check(card, name, lx)
+         character(len=*), intent(in) :: card, name
+         real(dp), intent(in) :: lx        !! natural logarithm of the constant in model units
+         if (.not. fit) return
+         if (lx > log(tiny(1.0_dp)) + 1.0_dp .and. lx < log(huge(1.0_dp)) - 1.0_dp) return
+         call errors%add('E-CONTACT', 'CONTACT/'//card//': '//name//' would be e^'//rtoa(lx)// &
+                         ', beyond the range of the arithmetic: the constant or its exponent is out of range '// &
+                         '(the unit conversion raises the pressure factor to the exponent)', file=file, line=line)
+         fit = .false.
+      end subroutine check
+   end function law_constants_fit
 
    !> Checks across the pairs of all interfaces: a pair joins two bodies and
    !! two different nodes, a node of B partners one node of A, every pair off

@@ -458,8 +458,10 @@ contains
       type(contact_pair_t), allocatable, intent(inout) :: pairs(:)
       type(error_list_t), intent(inout) :: errors
       type(contact_pair_t) :: p
+      type(contact_pair_t), allocatable :: new(:)
       real(dp) :: alpha
       integer :: k
+      allocate (new(size(s%pairs)))   ! filled, then appended once: linear in the pairs
       do k = 1, size(s%pairs)
          p = new_pair(m%coord, iface, s%pairs(k)%node_a, s%pairs(k)%node_b, s%pairs(k)%line)
          if (s%pairs(k)%has_alpha) then
@@ -478,8 +480,9 @@ contains
          else
             p%g0 = dot_product(m%coord(:, p%node_a) - m%coord(:, p%node_b), p%n)
          end if
-         pairs = [pairs, p]
+         new(k) = p
       end do
+      pairs = [pairs, new]
    end subroutine explicit_pairs
 
    !> Every node of SURFACE A paired with its node of SURFACE B (match_nodes);
@@ -499,6 +502,7 @@ contains
       integer, allocatable :: ie_a(:), ik_a(:), nodes_a(:), nodes_b(:), pair_b(:)
       character(len=:), allocatable :: msg, list
       type(contact_pair_t) :: p
+      type(contact_pair_t), allocatable :: new(:)
       integer :: k, nbad, np0
 
       ok = .false.
@@ -535,13 +539,15 @@ contains
          return
       end if
       np0 = size(pairs)
+      allocate (new(size(nodes_a)))   ! filled, then appended once: linear in the pairs
       do k = 1, size(nodes_a)
          p = new_pair(m%coord, iface, nodes_a(k), pair_b(k), s%surf(1)%line)
          p%n = normal(:, p%node_b)
          p%t = [p%n(2), -p%n(1)]
          p%g0 = dot_product(m%coord(:, p%node_a) - m%coord(:, p%node_b), p%n)
-         pairs = [pairs, p]
+         new(k) = p
       end do
+      pairs = [pairs, new]
       ! the surfaces must be the faces of the two bodies that look at each other
       ok = facing(m, s, iface, ie_a, ik_a, pairs(np0 + 1:), file, errors)
    end subroutine matched_pairs
@@ -625,7 +631,8 @@ contains
       logical, allocatable :: paired(:)
       character(len=:), allocatable :: msg, list
       type(contact_pair_t) :: p
-      integer :: ka, k, np0, nbad, outcome
+      type(contact_pair_t), allocatable :: new(:)
+      integer :: ka, k, np0, nbad, outcome, nnew
 
       ok = .false.
       np0 = size(pairs)
@@ -652,6 +659,8 @@ contains
       end if
       list = ''
       nbad = 0
+      allocate (new(size(nodes_a)))   ! filled, then appended once: linear in the pairs
+      nnew = 0
       do ka = 1, size(nodes_a)
          p = contact_pair_t()
          p%node_a = nodes_a(ka)
@@ -663,11 +672,13 @@ contains
             call segment_pair(m, ie_a, ik_a, ie_b, ik_b, area, tol, size_model, file, p, errors, outcome)
          end if
          if (outcome == NODE_PAIRED) then
-            pairs = [pairs, p]
+            nnew = nnew + 1
+            new(nnew) = p
          else if (outcome == NODE_UNMATCHED) then
             call note_node(nbad, list, p%node_a)
          end if
       end do
+      pairs = [pairs, new(1:nnew)]
       if (nbad > 0) then
          if (nbad > 20) list = list//' ...'
          call errors%add('E-UNMATCHED', 'CONTACT: interface '//itoa(iface)//': '//itoa(nbad)// &

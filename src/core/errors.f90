@@ -13,7 +13,7 @@ module errors
    implicit none
    private
 
-   public :: input_error_t, error_list_t, status_t, assert, fatal_internal, terminate
+   public :: input_error_t, error_list_t, status_t, assert, fatal_internal, terminate, skip_exit_handlers
    public :: STAT_OK, STAT_SINGULAR, STAT_NEGATIVE_PIVOT, STAT_JACOBIAN, &
              STAT_NO_CONVERGENCE, STAT_CHATTER, STAT_SOLVER, STAT_IO, STAT_INPUT, &
              EXIT_OK, EXIT_INTERNAL, EXIT_INPUT, EXIT_NUMERICAL
@@ -37,6 +37,9 @@ module errors
    integer, parameter :: EXIT_INPUT = 2
    integer, parameter :: EXIT_NUMERICAL = 3
    integer, parameter :: EXIT_DOUBTFUL = 4        !! completed with doubts (frozen states, drift, invariants)
+
+   !> Set by skip_exit_handlers: terminate ends the process without the exit handlers.
+   logical, save :: quick_exit = .false.
 
    !> One input error, located in a file.
    type :: input_error_t
@@ -91,7 +94,7 @@ contains
       this%n = this%n + 1
       associate (e => this%items(this%n))
          e%code = code
-         e%message = message
+         e%message = printable(message, 2000)
          e%file = ''
          if (present(file)) e%file = file
          e%line = 0
@@ -99,9 +102,29 @@ contains
          e%col = 0
          if (present(col)) e%col = col
          e%card = ''
-         if (present(card)) e%card = card
+         if (present(card)) e%card = printable(card, max(200, e%col + 20))
       end associate
    end subroutine error_list_add
+
+   !> Text from an input file made safe for a terminal: bytes outside printable
+   !! ASCII (binary data, control characters) shown as "?", and at most `limit`
+   !! characters, "..." after.
+   pure function printable(s, limit) result(r)
+      character(len=*), intent(in) :: s
+      integer, intent(in) :: limit
+      character(len=:), allocatable :: r
+      integer :: i, n
+      n = min(len(s), limit)
+      allocate (character(len=n) :: r)
+      do i = 1, n
+         if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) > 126) then
+            r(i:i) = '?'
+         else
+            r(i:i) = s(i:i)
+         end if
+      end do
+      if (len(s) > n) r = r//'...'
+   end function printable
 
    !> Number of errors collected so far.
    pure integer function error_list_count(this) result(n)
@@ -183,11 +206,24 @@ contains
             import :: c_int
             integer(c_int), value :: status
          end subroutine c_exit
+         subroutine c_quick_exit(status) bind(C, name='_exit')
+            import :: c_int
+            integer(c_int), value :: status
+         end subroutine c_quick_exit
       end interface
       flush (stdout)
       flush (stderr)
+      if (quick_exit) call c_quick_exit(int(code, c_int))
       call c_exit(int(code, c_int))
    end subroutine terminate
+
+   !> Make terminate end the process without running the exit handlers of
+   !! the libraries: after HDF5 failed to close a file (it could not flush it
+   !! to a full disk) its own clean-up at exit crashes inside the library.
+   !! Every file must be closed (or abandoned) before terminate.
+   subroutine skip_exit_handlers()
+      quick_exit = .true.
+   end subroutine skip_exit_handlers
 
    !> Report an internal error and stop with exit code 1.
    subroutine fatal_internal(message, file, line)

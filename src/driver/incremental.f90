@@ -58,7 +58,7 @@ module incremental
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, list_progress, &
-                      list_completed, list_failed, list_doubts
+                      list_completed, list_failed, list_doubts, close_listing
    implicit none
    private
    public :: run_options_t, run_result_t, run_analysis
@@ -304,7 +304,8 @@ contains
 
       out%have_lis = out%lis_level /= 'NONE'
       if (out%have_lis) then
-         open (newunit=out%lu, file=out%lis_path, status='replace', action='write', iostat=ios, iomsg=iomsg)
+         open (newunit=out%lu, file=out%lis_path, status='replace', action='write', access='stream', &
+               form='formatted', iostat=ios, iomsg=iomsg)
          if (ios /= 0) then
             call status%set(STAT_INPUT, 'cannot open the listing file '//out%lis_path//': '//trim(iomsg))
             return
@@ -315,16 +316,16 @@ contains
          if (out%lis_level == 'FULL') call list_input(out%lu, m)
       end if
       call out%rf%create(res%results_path, m, res%body_fields_t, status)
+      if (status%ok()) call out%rf%write_run_info(res%info, status)
+      if (res%info%npair > 0 .and. status%ok()) call out%rf%write_contact_definition(m%contact, res%info, status)
       if (.not. status%ok()) then
-         ! a result path that cannot be written is a command-line error
-         status%code = STAT_INPUT
+         ! a result path that cannot be created is a command-line error; a file created
+         ! but not written (a full disk) is an output failure (exit 3)
+         if (.not. out%rf%is_open()) status%code = STAT_INPUT
          call out%rf%close()
          if (out%have_lis) close (out%lu, status='delete')
          return
       end if
-      call out%rf%write_run_info(res%info, status)
-      if (res%info%npair > 0 .and. status%ok()) call out%rf%write_contact_definition(m%contact, res%info, status)
-      if (.not. status%ok()) return
       if (.not. out%quiet) then
          call list_header(stdout, m, res%info)
          call write_numbering_report(stdout, numbering)
@@ -348,7 +349,7 @@ contains
       type(step_record_t) :: srec
       real(dp), allocatable :: fext(:, :), fext_new(:, :), carry(:), dlam(:), ve_old(:)
       integer :: inc, nstep, cuts, ic
-      logical :: first
+      logical :: first, rough_newton
       real(dp) :: frac, step, s
 
       allocate (fext(2, m%npoin), fext_new(2, m%npoin), carry(an%map%neq), dlam(m%ncase), ve_old(an%npair))
@@ -356,6 +357,7 @@ contains
       carry = 0.0_dp
       nstep = 0
       first = .true.
+      rough_newton = an%returning .and. res%contact%has_rough   ! Newton return of the rough pairs
       step = 1.0_dp
       deck: do inc = 1, m%nincs
          frac = 0.0_dp
@@ -376,12 +378,14 @@ contains
             call check_finite_attempt(att%du, res%contact, an%has_contact, status)
             if (.not. m%autoinc) then
                if (.not. status%ok()) exit deck
-               call failed_convergence(m, an, att, res%contact, nstep + 1, status)
+               if (an%has_contact) call attempt_failure(att, res%contact, m%contact%opts, rough_newton, m%autoinc, &
+                                                        an%maxrep, nstep + 1, status)
                if (.not. status%ok()) exit deck
             else if (.not. status%ok() .or. .not. att%converged .or. res%contact%chatter) then
                ! cut the step and try again from the committed state
                if (s <= m%autoinc_min*(1.0_dp + 1.0e-9_dp)) then
-                  if (status%ok()) call failed_convergence(m, an, att, res%contact, nstep + 1, status)
+                  if (status%ok() .and. an%has_contact) call attempt_failure(att, res%contact, m%contact%opts, &
+                                                        rough_newton, m%autoinc, an%maxrep, nstep + 1, status)
                   if (status%ok()) call status%set(STAT_NO_CONVERGENCE, 'contact states keep changing in increment '// &
                                                    itoa(nstep + 1)//' even at the smallest step')
                   status%message = status%message//' (automatic increments: smallest step '// &
@@ -595,20 +599,6 @@ contains
                                            'has no support once they open (normal) or slip (tangential)'
    end subroutine describe_singular
 
-   !> An attempt that ended without convergence: the failure (exit 3) naming
-   !! the criterion that failed, unless an EXPLICIT increment whose slip forces
-   !! have not settled is accepted (attempt_failure).
-   subroutine failed_convergence(m, an, att, st, inc, status)
-      type(model_t), intent(in) :: m
-      type(analysis_t), intent(in) :: an
-      type(attempt_t), intent(in) :: att
-      type(contact_state_t), intent(in) :: st
-      integer, intent(in) :: inc
-      type(status_t), intent(inout) :: status
-      if (an%has_contact) call attempt_failure(att, st, m%contact%opts, an%returning .and. st%has_rough, m%autoinc, &
-                                               an%maxrep, inc, status)
-   end subroutine failed_convergence
-
    !> Fields, checks, output and progress of an accepted step.
    subroutine finish_step(m, an, res, out, fext, ve_old, srec, status)
       type(model_t), intent(in) :: m
@@ -667,29 +657,43 @@ contains
       type(model_t), intent(in) :: m
       type(run_result_t), intent(inout) :: res
       type(outputs_t), intent(inout) :: out
-      type(status_t), intent(in) :: status
+      type(status_t), intent(inout) :: status   !! a failure to write the listing or the result file ends it
+      character(len=:), allocatable :: doubts
+      integer :: done, every
+      done = merge(-1, res%completed, out%set_up_failed)
+      every = merge(1, m%results_every, out%set_up_failed)
+      ! the listing's closing lines and summary; the listing is then closed and
+      ! checked (a full disk shows only at its close)
+      if (out%have_lis) then
+         if (status%ok() .and. res%doubts%steps > 0) then
+            call list_doubts(out%lu, res%doubts, doubt_summary(res%doubts, res%completed), '')
+         else if (.not. status%ok()) then
+            call list_failed(out%lu, done, status%message, res%results_path, every)
+         end if
+         call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, res%contact%s%ua, &
+                               res%contact%s%pa, .true., out%lu, .true., out%t0, out%rate)
+         call close_listing(out%lu, out%lis_path, status)
+      end if
       if (status%ok() .and. res%doubts%steps > 0) then
          ! completed, but not to be trusted without a look: exit code 4
-         call out%rf%set_status('doubtful: '//doubt_summary(res%doubts, res%completed))
-         call list_doubts(stderr, res%doubts, doubt_summary(res%doubts, res%completed), res%results_path)
-         if (out%have_lis) call list_doubts(out%lu, res%doubts, doubt_summary(res%doubts, res%completed), '')
+         doubts = doubt_summary(res%doubts, res%completed)
+         call out%rf%set_status('doubtful: '//doubts, status)
+         if (status%ok()) call list_doubts(stderr, res%doubts, doubts, res%results_path)
       else if (status%ok()) then
-         call out%rf%set_status('completed')
-         if (.not. out%quiet) call list_completed(stdout, res%completed, res%results_path)
-      else if (out%set_up_failed) then
-         call out%rf%set_status('failed at set-up: '//status%message)
+         call out%rf%set_status('completed', status)
+         if (status%ok() .and. .not. out%quiet) call list_completed(stdout, res%completed, res%results_path)
+      end if
+      if (.not. status%ok()) then
+         if (out%set_up_failed) then
+            call out%rf%set_status('failed at set-up: '//status%message)
+         else
+            call out%rf%set_status('failed at increment '//itoa(res%completed + 1)//': '//status%message)
+         end if
          res%reported = .true.
-         call list_failed(stderr, -1, status%message, res%results_path, 1)
-         if (out%have_lis) call list_failed(out%lu, -1, status%message, res%results_path, 1)
-      else
-         call out%rf%set_status('failed at increment '//itoa(res%completed + 1)//': '//status%message)
-         res%reported = .true.
-         call list_failed(stderr, res%completed, status%message, res%results_path, m%results_every)
-         if (out%have_lis) call list_failed(out%lu, res%completed, status%message, res%results_path, m%results_every)
+         call list_failed(stderr, done, status%message, res%results_path, every)
       end if
       call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, res%contact%s%ua, &
-                            res%contact%s%pa, out%have_lis, out%lu, out%quiet, out%t0, out%rate)
-      call out%rf%close()
-      if (out%have_lis) close (out%lu)
+                            res%contact%s%pa, .false., out%lu, out%quiet, out%t0, out%rate)
+      call out%rf%close(status)
    end subroutine close_outputs
 end module incremental

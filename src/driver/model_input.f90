@@ -17,12 +17,15 @@
 !!    rigid reference nodes in axisymmetry, and rigid-body motion of every
 !!    body (bodies joined by ties and contact pairs count as one).
 !!
+!! 5. With no error so far, the start pressure of the rough interfaces: a
+!!    displacement-driven first increment needs CONTACT START PM.
+!!
 !! Every step reports into the same error list with the file and line (and
 !! column where the reader knows it), so a rejected deck gives the same
 !! messages whichever step found the problem.
 module model_input
    use kinds, only: dp
-   use errors, only: error_list_t
+   use errors, only: error_list_t, status_t, STAT_INPUT
    use strings, only: itoa, rtoa
    use model, only: model_t, MAX_NODE, NTYPE_AXISYMMETRIC
    use contact_spec, only: is_rigid_reference
@@ -31,6 +34,9 @@ module model_input
    use solid2d, only: min_jacobian
    use deck_reader, only: read_deck
    use contact_definition, only: define_contact
+   use contact_algorithm, only: contact_state_t
+   use contact_start, only: init_contact_states, start_pressure
+   use assembly, only: assemble_load_cases
    implicit none
    private
 
@@ -52,7 +58,30 @@ contains
       call check_gauss_rules(m, errors)
       if (m%contact_spec%complete .and. errors%n == n0) call define_contact(m, errors, warnings)
       if (errors%n == 0) call check_model(m, errors)
+      if (errors%n == 0) call check_start_pressure(m, errors)
    end subroutine read_model
+
+   !> A rough interface needs the start pressure p_m of eq. (4.1): from the
+   !! force of the first increment normal to the initially closed pairs, or
+   !! from CONTACT START PM.  A first increment that applies no such force (it
+   !! is displacement-driven) leaves p_m undefined: an input error, located at
+   !! the CONTACT block, found here rather than by the analysis.
+   !! Ref: Altenbach & Buczkowski, eq. (4.1).
+   subroutine check_start_pressure(m, errors)
+      type(model_t), intent(in) :: m
+      type(error_list_t), intent(inout) :: errors
+      type(contact_state_t) :: st
+      type(status_t) :: status
+      real(dp), allocatable :: fcase(:, :, :), ucase(:, :, :)
+      if (size(m%contact%pairs) == 0 .or. m%contact%opts%p_start > 0.0_dp) return
+      call init_contact_states(m, st)
+      if (.not. st%has_rough) return
+      call assemble_load_cases(m, fcase, ucase, status)
+      if (.not. status%ok()) return      ! the analysis reports it, with the element
+      call start_pressure(m, fcase, m%lambda(:, 1) - m%lambda(:, 0), st, status)
+      if (status%code == STAT_INPUT) call errors%add('E-START', status%message, file=m%deck_file, &
+                                                     line=max(m%contact_spec%line, 1))
+   end subroutine check_start_pressure
 
    !> NGAUS of the control card against the elements of a gmsh mesh (MESH
    !! block): reported at the first element whose family has no such rule.

@@ -13,7 +13,7 @@
 module deck_contact
    use kinds, only: dp
    use strings, only: itoa, rtoa
-   use deck_lexer, only: deck_t
+   use deck_lexer, only: deck_t, shown
    use model, only: model_t
    use contact_types, only: interface_t, contact_options_t, LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, &
                             FRICTION_COULOMB, FRICTION_FREDRIKSSON, UNITS_KGF_UM, UNITS_N_UM, &
@@ -36,6 +36,7 @@ module deck_contact
    type :: contact_cursor_t
       integer :: mode = DATA_NONE
       integer :: iside = 0
+      integer :: nif = 0            !! interfaces opened so far (cs%ifaces has room for more)
    end type contact_cursor_t
 
 contains
@@ -165,10 +166,13 @@ contains
             ic = d%next()
             if (d%is_keyword_card(ic)) then
                call read_contact_keyword(d, ic, m%npoin, cs, cur)
+               if (cur%mode /= DATA_NONE) call read_data_run(d, m%npoin, cs, cur)
             else
                call read_contact_data(d, ic, m%npoin, cs, cur)
             end if
          end do
+         ! the interfaces grew by doubling: cut to those opened
+         if (cur%nif < size(cs%ifaces)) cs%ifaces = cs%ifaces(1:cur%nif)
          if (size(cs%ifaces) == 0) then
             call d%error_at(ickw, 1, 'E-CONTACT', 'CONTACT: the block defines no interface (expected at least NORMAL, '// &
                             'FRICTION and SURFACE or PAIRS cards)')
@@ -196,9 +200,9 @@ contains
       call d%get_word(ic, 1, 10, 'CONTACT', 'KEYWORD', key, ok)
       cur%mode = DATA_NONE
       ! cards of an interface before the first INTERFACE card open interface 1
-      if (key == 'INTERFACE' .or. (size(cs%ifaces) == 0 .and. any(key == iface_cards))) &
-         call new_interface(cs, d%cards(ic)%line)
-      nif = size(cs%ifaces)
+      if (key == 'INTERFACE' .or. (cur%nif == 0 .and. any(key == iface_cards))) &
+         call new_interface(cs, cur, d%cards(ic)%line)
+      nif = cur%nif
       select case (key)
       case ('INTERFACE')
          continue   ! opened above
@@ -247,37 +251,101 @@ contains
       end select
    end subroutine read_contact_keyword
 
+   !> The data cards after a SURFACE, PAIRS or RIGID POLYLINE card, up to the
+   !! next keyword card, in two passes: count them, then read them into
+   !! buffers sized once and append those at once, so that a long list costs
+   !! linear time.  A node listed twice in one surface is an error.
+   subroutine read_data_run(d, npoin, cs, cur)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: npoin                  !! nodes of the model
+      type(contact_spec_t), intent(inout) :: cs
+      type(contact_cursor_t), intent(in) :: cur     !! the data the cards hold
+      integer :: ncard, k, ic, nn, nv, np, n0, nif
+      integer, allocatable :: nodes(:), first_line(:)
+      real(dp), allocatable :: xy(:, :), tmp(:, :)
+      type(pair_spec_t), allocatable :: pairs(:)
+      type(pair_spec_t) :: p
+      logical :: ok
+
+      ncard = 0
+      do while (d%pos + ncard < d%ncard)
+         if (d%is_keyword_card(d%pos + ncard + 1)) exit
+         ncard = ncard + 1
+      end do
+      if (ncard == 0) return
+      nif = cur%nif
+      select case (cur%mode)
+      case (DATA_SURFACE)
+         associate (surf => cs%ifaces(nif)%surf(cur%iside))
+            allocate (nodes(16*ncard), first_line(max(npoin, 1)))
+            first_line = 0
+            do k = 1, size(surf%nodes)
+               if (surf%nodes(k) >= 1 .and. surf%nodes(k) <= npoin) first_line(surf%nodes(k)) = surf%line
+            end do
+            nn = 0
+            do k = 1, ncard
+               ic = d%next()
+               call read_node_list(d, ic, npoin, nodes, nn, first_line)
+            end do
+            surf%nodes = [surf%nodes, nodes(1:nn)]
+         end associate
+      case (DATA_PAIRS)
+         allocate (pairs(ncard))
+         np = 0
+         do k = 1, ncard
+            ic = d%next()
+            call read_pair(d, ic, npoin, p, ok)
+            if (.not. ok) cycle
+            np = np + 1
+            pairs(np) = p
+         end do
+         cs%ifaces(nif)%pairs = [cs%ifaces(nif)%pairs, pairs(1:np)]
+      case (DATA_VERTICES)
+         allocate (xy(2, ncard))
+         nv = 0
+         do k = 1, ncard
+            ic = d%next()
+            call read_vertex(d, ic, xy(:, nv + 1), ok)
+            if (ok) nv = nv + 1
+         end do
+         associate (rb => cs%rigids(size(cs%rigids)))
+            n0 = size(rb%xy, 2)
+            allocate (tmp(2, n0 + nv))
+            tmp(:, 1:n0) = rb%xy
+            tmp(:, n0 + 1:n0 + nv) = xy(:, 1:nv)
+            call move_alloc(tmp, rb%xy)
+         end associate
+      end select
+   end subroutine read_data_run
+
    !> A data card of CONTACT: what it holds depends on the last keyword card.
    subroutine read_contact_data(d, ic, npoin, cs, cur)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic, npoin
-      type(contact_spec_t), intent(inout) :: cs
+      type(contact_spec_t), intent(in) :: cs
       type(contact_cursor_t), intent(in) :: cur
-      select case (cur%mode)
-      case (DATA_SURFACE)
-         call read_node_list(d, ic, npoin, cs%ifaces(size(cs%ifaces))%surf(cur%iside))
-      case (DATA_PAIRS)
-         call read_pair(d, ic, npoin, cs%ifaces(size(cs%ifaces)))
-      case (DATA_VERTICES)
-         call read_vertex(d, ic, cs%rigids(size(cs%rigids)))
-      case default
-         call d%error_at(ic, 1, 'E-CARD', 'CONTACT: a data card must follow a SURFACE, PAIRS or RIGID POLYLINE '// &
-                         'card, found "'// &
-                         trim(d%cards(ic)%text)//'"')
-      end select
+      ! the data cards of SURFACE, PAIRS and RIGID POLYLINE are read by read_data_run
+      if (cur%mode /= DATA_NONE .or. npoin < 0 .or. size(cs%rigids) < 0) return
+      call d%error_at(ic, 1, 'E-CARD', 'CONTACT: a data card must follow a SURFACE, PAIRS or RIGID POLYLINE '// &
+                      'card, found "'//shown(trim(d%cards(ic)%text))//'"')
    end subroutine read_contact_data
 
    !> INTERFACE card (or the first card of an interface): a new interface.
-   subroutine new_interface(cs, line)
+   subroutine new_interface(cs, cur, line)
       type(contact_spec_t), intent(inout) :: cs
+      type(contact_cursor_t), intent(inout) :: cur   !! nif: the interfaces opened so far
       integer, intent(in) :: line          !! deck line of the card that opens it
       type(iface_spec_t), allocatable :: tmp(:)
       integer :: nif
-      nif = size(cs%ifaces)
-      allocate (tmp(nif + 1))
-      if (nif > 0) tmp(1:nif) = cs%ifaces(1:nif)
-      call move_alloc(tmp, cs%ifaces)
+      nif = cur%nif
+      if (nif == size(cs%ifaces)) then
+         ! room doubles (cut to size at the end of the block): linear in the cards
+         allocate (tmp(max(4, 2*nif)))
+         if (nif > 0) tmp(1:nif) = cs%ifaces(1:nif)
+         call move_alloc(tmp, cs%ifaces)
+      end if
       nif = nif + 1
+      cur%nif = nif
       cs%ifaces(nif)%line = line
       cs%ifaces(nif)%law%line = line
       allocate (cs%ifaces(nif)%pairs(0))
@@ -292,7 +360,7 @@ contains
       character(len=:), allocatable :: t
       t = trim(adjustl(d%field_text(ic, col, 100000)))
       if (len(t) > 0) then
-         call d%error_at(ic, col, 'E-EXTRA', 'CONTACT: expected '//what//', found more: "'//t//'"')
+         call d%error_at(ic, col, 'E-EXTRA', 'CONTACT: expected '//what//', found more: "'//shown(t)//'"')
          ok = .false.
       end if
    end subroutine tail
@@ -558,11 +626,14 @@ contains
       end if
    end subroutine read_surface
 
-   !> A data card of a SURFACE: up to 16 node numbers, I5 each.
-   subroutine read_node_list(d, ic, npoin, surf)
+   !> A data card of a SURFACE: up to 16 node numbers, I5 each, appended to
+   !! nodes(1:nn); first_line(node) is the line where a node was listed first.
+   subroutine read_node_list(d, ic, npoin, nodes, nn, first_line)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic, npoin
-      type(surface_spec_t), intent(inout) :: surf
+      integer, intent(inout) :: nodes(:)         !! room for 16 more
+      integer, intent(inout) :: nn
+      integer, intent(inout) :: first_line(:)    !! (npoin)
       integer :: k, c1, node
       logical :: ok
       ok = .true.
@@ -576,21 +647,28 @@ contains
                             itoa(c1 + 4)//') expected 1..'//itoa(npoin)//', found '//itoa(node))
             cycle
          end if
-         surf%nodes = [surf%nodes, node]
+         if (first_line(node) /= 0) then
+            call d%error_at(ic, c1, 'E-DUPLICATE', 'CONTACT/SURFACE: node '//itoa(node)//' (columns '// &
+                            itoa(c1)//'-'//itoa(c1 + 4)//') is listed twice in this surface (first on line '// &
+                            itoa(first_line(node))//')')
+            cycle
+         end if
+         first_line(node) = d%cards(ic)%line
+         nn = nn + 1
+         nodes(nn) = node
       end do
       if (len_trim(d%field_text(ic, 81, 100000)) > 0) call d%error_at(ic, 81, 'E-EXTRA', &
                                                 'CONTACT/SURFACE: at most 16 node numbers per card (columns 1-80)')
    end subroutine read_node_list
 
    !> A data card of PAIRS: NODEA, NODEB, G0, ALPHA (degrees), AREA.
-   subroutine read_pair(d, ic, npoin, s)
+   subroutine read_pair(d, ic, npoin, p, ok)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic, npoin
-      type(iface_spec_t), intent(inout) :: s
-      type(pair_spec_t) :: p
+      type(pair_spec_t), intent(out) :: p     !! the pair (when ok)
+      logical, intent(out) :: ok              !! the card holds a valid pair
       integer :: na, nb
       real(dp) :: g0, alpha, area
-      logical :: ok
       ok = .true.
       call d%get_int(ic, 1, 5, 'CONTACT/PAIRS', 'NODEA', na, ok)
       call d%get_int(ic, 6, 10, 'CONTACT/PAIRS', 'NODEB', nb, ok)
@@ -602,18 +680,19 @@ contains
       if (na < 1 .or. na > npoin .or. nb < 1 .or. nb > npoin) then
          call d%error_at(ic, 1, 'E-RANGE', 'CONTACT/PAIRS: node numbers (columns 1-10) expected 1..'// &
                          itoa(npoin)//', found '//itoa(na)//' and '//itoa(nb))
+         ok = .false.
          return
       end if
       if (len_trim(d%field_text(ic, 31, 40)) > 0 .and. .not. (area > 0.0_dp)) then
          call d%error_at(ic, 31, 'E-CONTACT', 'CONTACT/PAIRS: AREA (columns 31-40) expected a positive area, '// &
                          'found '//rtoa(area))
+         ok = .false.
          return
       end if
       p = pair_spec_t(node_a=na, node_b=nb, g0=g0, alpha=alpha, area=area, &
                       has_g0=len_trim(d%field_text(ic, 11, 20)) > 0, &
                       has_alpha=len_trim(d%field_text(ic, 21, 30)) > 0, &
                       has_area=len_trim(d%field_text(ic, 31, 40)) > 0, line=d%cards(ic)%line)
-      s%pairs = [s%pairs, p]
    end subroutine read_pair
 
    !> MATCHING: NODE (node-to-node pairs) or SEGMENT (nodes of A against edges of B).
@@ -652,10 +731,12 @@ contains
       character(len=:), allocatable :: shape
       integer :: nref, nif
       real(dp) :: x(4)
+      integer :: k
+      character(len=2), parameter :: fnames(4) = ['X1', 'Y1', 'X2', 'Y2'], cnames(3) = ['XC', 'YC', 'R ']
       logical :: ok
       type(rigid_body_t) :: rb
       ok = .true.
-      nif = size(cs%ifaces)
+      nif = cur%nif
       if (cs%ifaces(nif)%law%rigid > 0) then
          call d%error_at(ic, 1, 'E-RIGID', 'CONTACT/RIGID: this interface already has a rigid body '// &
                          '(one RIGID card per interface; start another INTERFACE)')
@@ -678,6 +759,9 @@ contains
          call d%get_real(ic, 51, 60, 'CONTACT/RIGID', 'X2', x(3), ok)
          call d%get_real(ic, 61, 70, 'CONTACT/RIGID', 'Y2', x(4), ok)
          call tail(d, ic, 71, 'FLAT, NREF, X1, Y1, X2, Y2 in columns 11-70', ok)
+         do k = 1, 4
+            call d%check_coordinate(ic, 21 + 10*k, 'CONTACT/RIGID', trim(fnames(k)), x(k), ok)
+         end do
          if (.not. ok) return
          rb%shape = RIGID_POLYLINE
          rb%xy = reshape(x, [2, 2])
@@ -686,6 +770,9 @@ contains
          call d%get_real(ic, 41, 50, 'CONTACT/RIGID', 'YC', x(2), ok)
          call d%get_real(ic, 51, 60, 'CONTACT/RIGID', 'R', x(3), ok)
          call tail(d, ic, 61, 'CIRCLE, NREF, XC, YC, R in columns 11-60', ok)
+         do k = 1, 3
+            call d%check_coordinate(ic, 21 + 10*k, 'CONTACT/RIGID', trim(cnames(k)), x(k), ok)
+         end do
          if (.not. ok) return
          if (.not. (x(3) > 0.0_dp)) then
             call d%error_at(ic, 51, 'E-RIGID', 'CONTACT/RIGID: R (columns 51-60) expected a positive radius, '// &
@@ -712,18 +799,17 @@ contains
    end subroutine read_rigid
 
    !> A vertex of a POLYLINE profile: X (1-10), Y (11-20) [model length].
-   subroutine read_vertex(d, ic, rb)
+   subroutine read_vertex(d, ic, xy, ok)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic
-      type(rigid_body_t), intent(inout) :: rb
-      real(dp) :: x, y
-      logical :: ok
+      real(dp), intent(out) :: xy(2)          !! the vertex (when ok)
+      logical, intent(out) :: ok              !! the card holds a valid vertex
       ok = .true.
-      call d%get_real(ic, 1, 10, 'CONTACT/RIGID', 'X', x, ok)
-      call d%get_real(ic, 11, 20, 'CONTACT/RIGID', 'Y', y, ok)
+      call d%get_real(ic, 1, 10, 'CONTACT/RIGID', 'X', xy(1), ok)
+      call d%get_real(ic, 11, 20, 'CONTACT/RIGID', 'Y', xy(2), ok)
+      call d%check_coordinate(ic, 1, 'CONTACT/RIGID', 'X', xy(1), ok)
+      call d%check_coordinate(ic, 11, 'CONTACT/RIGID', 'Y', xy(2), ok)
       call tail(d, ic, 21, 'X, Y of a vertex in columns 1-20', ok)
-      if (.not. ok) return
-      rb%xy = reshape([reshape(rb%xy, [size(rb%xy)]), x, y], [2, size(rb%xy, 2) + 1])
    end subroutine read_vertex
 
    ! ------------------------------------------------------------------ CONTACT: algorithm options

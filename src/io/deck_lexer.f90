@@ -12,11 +12,18 @@ module deck_lexer
                                             ieee_set_flag
    use kinds, only: dp
    use errors, only: error_list_t
-   use strings, only: upper, itoa
+   use strings, only: upper, itoa, rtoa
    implicit none
    private
 
-   public :: card_t, deck_t, is_integer_text, is_real_text
+   public :: card_t, deck_t, is_integer_text, is_real_text, shown, MAX_DECK_BYTES, MAX_COORDINATE
+
+   !> Largest coordinate (magnitude) of a node or a rigid profile: the geometry squares sums of
+   !! coordinate differences (lengths, the element size squared), which must stay representable.
+   real(dp), parameter :: MAX_COORDINATE = 0.25_dp*sqrt(huge(1.0_dp))
+
+   !> Largest deck read (bytes): far above any mesh a fixed-format deck holds (5-digit node numbers).
+   integer, parameter :: MAX_DECK_BYTES = 256*2**20
 
    !> One significant line of the deck.
    type :: card_t
@@ -43,6 +50,8 @@ module deck_lexer
       procedure :: get_int => deck_get_int
       procedure :: get_real => deck_get_real
       procedure :: get_word => deck_get_word
+      procedure :: check_magnitude => deck_check_magnitude
+      procedure :: check_coordinate => deck_check_coordinate
       procedure :: error_at => deck_error_at
       procedure :: error_eof => deck_error_eof
       procedure :: field_text => deck_field_text
@@ -51,11 +60,16 @@ module deck_lexer
 contains
 
    !> Read the file into memory and split it into cards.
+   !! A file that is not a text deck (a NUL byte: a binary file, /dev/zero,
+   !! /dev/urandom) or is larger than MAX_DECK_BYTES is rejected with the
+   !! line and column of the first offending byte; a file whose size the
+   !! system does not report (a device, a pipe) is read byte by byte up to
+   !! that limit.
    subroutine deck_load(this, path, ok)
       class(deck_t), intent(inout) :: this
       character(len=*), intent(in) :: path   !! deck file
       logical, intent(out) :: ok             !! false if the file could not be read
-      integer :: u, ios, fsize, i, start, nl
+      integer :: u, ios, fsize, i, start, nl, nul
       character(len=:), allocatable :: buf
       character(len=256) :: msg
       logical :: exists
@@ -73,18 +87,32 @@ contains
          call this%errors%add('E-FILE', 'cannot open deck: '//trim(msg), file=path)
          return
       end if
-      inquire (unit=u, size=fsize)
-      if (fsize < 0) fsize = 0
-      allocate (character(len=fsize) :: buf)
-      if (fsize > 0) then
-         read (u, iostat=ios, iomsg=msg) buf
-         if (ios /= 0) then
-            call this%errors%add('E-FILE', 'cannot read deck: '//trim(msg), file=path)
-            close (u)
-            return
-         end if
-      end if
+      call read_all(u, buf, fsize, ios, msg)
       close (u)
+      if (ios /= 0) then
+         call this%errors%add('E-FILE', 'cannot read deck: '//trim(msg), file=path)
+         return
+      end if
+      nul = index(buf(1:fsize), achar(0))
+      if (nul > 0 .or. fsize > MAX_DECK_BYTES) then
+         if (nul == 0) nul = MAX_DECK_BYTES + 1
+         nl = 1
+         start = 1
+         do i = 1, nul - 1
+            if (buf(i:i) == achar(10)) then
+               nl = nl + 1
+               start = i + 1
+            end if
+         end do
+         if (nul <= fsize .and. nul <= MAX_DECK_BYTES) then
+            call this%errors%add('E-FILE', 'not a text deck: a NUL byte (binary data) at byte '//itoa(nul), &
+                                 file=path, line=nl, col=nul - start + 1)
+         else
+            call this%errors%add('E-FILE', 'the deck is larger than '//itoa(MAX_DECK_BYTES/2**20)// &
+                                 ' MB: not a deck this program reads', file=path, line=nl, col=nul - start + 1)
+         end if
+         return
+      end if
 
       allocate (this%cards(64))
       this%ncard = 0
@@ -109,6 +137,43 @@ contains
       ok = .true.
    end subroutine deck_load
 
+   !> The whole content of an open stream unit: read at once when the system
+   !! reports the size, byte by byte (doubling the buffer) up to one byte past
+   !! MAX_DECK_BYTES, or to the first NUL byte, when it does not.
+   subroutine read_all(u, buf, n, ios, msg)
+      integer, intent(in) :: u                          !! unit opened for stream access
+      character(len=:), allocatable, intent(out) :: buf !! the content (buf(1:n))
+      integer, intent(out) :: n                         !! bytes read
+      integer, intent(out) :: ios                       !! 0, or the error of the read
+      character(len=*), intent(inout) :: msg            !! the error message
+      character(len=:), allocatable :: tmp
+      character(len=1) :: c
+      integer :: fsize
+      inquire (unit=u, size=fsize)
+      ios = 0
+      if (fsize > 0) then
+         n = min(fsize, MAX_DECK_BYTES + 1)
+         allocate (character(len=n) :: buf)
+         read (u, iostat=ios, iomsg=msg) buf
+         return
+      end if
+      allocate (character(len=4096) :: buf)
+      n = 0
+      do while (n <= MAX_DECK_BYTES)
+         read (u, iostat=ios, iomsg=msg) c
+         if (ios /= 0) exit
+         if (n == len(buf)) then
+            allocate (character(len=2*len(buf)) :: tmp)
+            tmp(1:n) = buf
+            call move_alloc(tmp, buf)
+         end if
+         n = n + 1
+         buf(n:n) = c
+         if (c == achar(0)) exit
+      end do
+      if (is_iostat_end(ios)) ios = 0
+   end subroutine read_all
+
    !> Strip CR, comment and trailing blanks; keep the line if anything is left.
    subroutine add_line(this, raw, nl)
       type(deck_t), intent(inout) :: this
@@ -128,7 +193,7 @@ contains
       if (k > 0) then
          call this%errors%add('E-TAB', 'tab character in a fixed-format deck; '// &
                               'fields are counted in columns, use spaces', &
-                              file=this%file, line=nl, col=k, card=expand_tabs(s))
+                              file=this%file, line=nl, col=k, card=shown(s, 200))
          s = expand_tabs(s)
       end if
       if (len_trim(s) == 0) return
@@ -142,19 +207,53 @@ contains
       this%cards(this%ncard)%line = nl
    end subroutine add_line
 
+   !> Tabs expanded to the next multiple of 8 columns (two passes: the length, then the text).
    pure function expand_tabs(s) result(r)
       character(len=*), intent(in) :: s
       character(len=:), allocatable :: r
-      integer :: i
-      r = ''
+      integer :: i, n, k
+      n = 0
       do i = 1, len(s)
          if (s(i:i) == achar(9)) then
-            r = r//repeat(' ', 8 - mod(len(r), 8))
+            n = n + 8 - mod(n, 8)
          else
-            r = r//s(i:i)
+            n = n + 1
+         end if
+      end do
+      allocate (character(len=n) :: r)
+      n = 0
+      do i = 1, len(s)
+         if (s(i:i) == achar(9)) then
+            k = 8 - mod(n, 8)
+            r(n + 1:n + k) = repeat(' ', k)
+            n = n + k
+         else
+            n = n + 1
+            r(n:n) = s(i:i)
          end if
       end do
    end function expand_tabs
+
+   !> Text of a card or field for a message: bytes outside printable ASCII
+   !! shown as "?", and at most `limit` characters (default 60), "..." after.
+   pure function shown(s, limit) result(r)
+      character(len=*), intent(in) :: s
+      integer, intent(in), optional :: limit
+      character(len=:), allocatable :: r
+      integer :: i, n, lim
+      lim = 60
+      if (present(limit)) lim = limit
+      n = min(len(s), max(lim, 0))
+      allocate (character(len=n) :: r)
+      do i = 1, n
+         if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) > 126) then
+            r(i:i) = '?'
+         else
+            r(i:i) = s(i:i)
+         end if
+      end do
+      if (len(s) > n) r = r//'...'
+   end function shown
 
    pure logical function deck_at_end(this)
       class(deck_t), intent(in) :: this
@@ -246,14 +345,14 @@ contains
       end if
       if (.not. is_integer_text(f)) then
          call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
-                            itoa(c1)//'-'//itoa(c2)//') expected an integer, found "'//f//'"')
+                            itoa(c1)//'-'//itoa(c2)//') expected an integer, found "'//shown(f)//'"')
          ok = .false.
          return
       end if
       read (f, *, iostat=ios) val
       if (ios /= 0) then
          call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
-                            itoa(c1)//'-'//itoa(c2)//') integer out of range: "'//f//'"')
+                            itoa(c1)//'-'//itoa(c2)//') integer out of range: "'//shown(f)//'"')
          ok = .false.
       end if
    end subroutine deck_get_int
@@ -284,7 +383,7 @@ contains
       end if
       if (.not. is_real_text(f)) then
          call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
-                            itoa(c1)//'-'//itoa(c2)//') expected a real number, found "'//f//'"')
+                            itoa(c1)//'-'//itoa(c2)//') expected a real number, found "'//shown(f)//'"')
          ok = .false.
          return
       end if
@@ -298,7 +397,7 @@ contains
       if (halt) call ieee_set_halting_mode(ieee_overflow, .true.)
       if (ios /= 0 .or. .not. (abs(val) <= huge(val))) then
          call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
-                            itoa(c1)//'-'//itoa(c2)//') real number out of range: "'//f//'"')
+                            itoa(c1)//'-'//itoa(c2)//') real number out of range: "'//shown(f)//'"')
          val = 0.0_dp
          ok = .false.
       end if
@@ -324,6 +423,38 @@ contains
       end if
    end subroutine deck_get_word
 
+   !> A load or a prescribed displacement read from columns c1.. of card ic
+   !! must not exceed sqrt(huge) in magnitude: the analysis multiplies it by
+   !! stiffnesses, which the material check bounds by sqrt(huge) as well, so
+   !! that the product stays representable.  An error at the field otherwise.
+   subroutine deck_check_magnitude(this, ic, c1, card, field, val, ok)
+      class(deck_t), intent(inout) :: this
+      integer, intent(in) :: ic, c1              !! card, first column of the field
+      character(len=*), intent(in) :: card, field
+      real(dp), intent(in) :: val
+      logical, intent(inout) :: ok               !! set to .false. on error
+      if (.not. ok) return
+      if (abs(val) <= sqrt(huge(val))) return
+      call this%error_at(ic, c1, 'E-RANGE', card//': '//field//' = '//rtoa(val)//' is beyond '// &
+                         rtoa(sqrt(huge(val)))//' in magnitude: the analysis multiplies it by stiffnesses')
+      ok = .false.
+   end subroutine deck_check_magnitude
+
+   !> A coordinate (of a node, of a rigid profile) read from columns c1.. of
+   !! card ic must not exceed MAX_COORDINATE in magnitude.
+   subroutine deck_check_coordinate(this, ic, c1, card, field, val, ok)
+      class(deck_t), intent(inout) :: this
+      integer, intent(in) :: ic, c1              !! card, first column of the field
+      character(len=*), intent(in) :: card, field
+      real(dp), intent(in) :: val
+      logical, intent(inout) :: ok               !! set to .false. on error
+      if (.not. ok) return
+      if (abs(val) <= MAX_COORDINATE) return
+      call this%error_at(ic, c1, 'E-RANGE', card//': '//field//' = '//rtoa(val)//' is beyond '// &
+                         rtoa(MAX_COORDINATE)//' in magnitude: the geometry squares lengths')
+      ok = .false.
+   end subroutine deck_check_coordinate
+
    !> Record an error located at card ic, column col.
    !! Only the first field-format error (E-NUMBER, E-MISSING, E-EXTRA) of a
    !! card is kept: a card in the wrong place would otherwise give one
@@ -337,7 +468,7 @@ contains
          this%last_format_error = ic
       end if
       call this%errors%add(code, message, file=this%file, line=this%cards(ic)%line, &
-                           col=max(col, 1), card=this%cards(ic)%text)
+                           col=max(col, 1), card=shown(this%cards(ic)%text, max(200, col + 20)))
    end subroutine deck_error_at
 
    !> Record an error at the end of the file (something is missing).

@@ -22,8 +22,8 @@ module deck_reader
    use kinds, only: dp
    use errors, only: error_list_t
    use strings, only: itoa, rtoa, upper
-   use deck_lexer, only: deck_t
-   use model, only: model_t, material_t, restraint_t, point_load_t, edge_load_t, &
+   use deck_lexer, only: deck_t, shown
+   use model, only: model_t, MAX_CASE, material_t, restraint_t, point_load_t, edge_load_t, &
                     body_load_t, MAX_NODE, NTYPE_AXISYMMETRIC
    use topology, only: element_edge_nodes, nedges
    use contact_spec, only: is_rigid_reference
@@ -43,6 +43,9 @@ module deck_reader
    !> ELEMENTS and NODES are not required when a MESH block gives the mesh (see `required`).
    logical, parameter :: block_required(13) = [.true., .true., .false., .false., .true., .true., &
                                                .true., .false., .true., .false., .false., .false., .true.]
+
+   !> Longest title (characters): it is one attribute of the result file.
+   integer, parameter :: MAX_TITLE = 256
 
    !> Counts declared on the control card, needed by later blocks.
    type :: control_t
@@ -94,7 +97,7 @@ contains
          if (.not. d%is_keyword_card(ic) .or. iblk == 0) then
             call d%error_at(ic, 1, 'E-BLOCK', 'expected a block keyword ('// &
                             'TITLE, CONTROL, OPTIONS, MESH, ELEMENTS, NODES, RESTRAINTS, TIES, MATERIALS, '// &
-                            'LOADS, CONTACT, INCREMENTS or END), found "'//trim(d%cards(ic)%text)//'"')
+                            'LOADS, CONTACT, INCREMENTS or END), found "'//shown(trim(d%cards(ic)%text))//'"')
             call skip_to_block(d)
             cycle
          end if
@@ -123,7 +126,7 @@ contains
             if (.not. d%at_end()) then
                ic = d%next()
                call d%error_at(ic, 1, 'E-AFTER-END', 'nothing may follow the END card, found "'// &
-                               trim(d%cards(ic)%text)//'"')
+                               shown(trim(d%cards(ic)%text))//'"')
             end if
             exit
          end if
@@ -308,7 +311,7 @@ contains
             ! an unknown keyword: report it once and skip its cards
             call d%error_at(ic, 1, 'E-BLOCK', card//': expected '//expected// &
                             ' or a block keyword (TITLE, CONTROL, OPTIONS, MESH, ELEMENTS, NODES, RESTRAINTS, '// &
-                            'TIES, MATERIALS, LOADS, CONTACT, INCREMENTS, END), found "'//trim(d%cards(ic)%text)//'"')
+                            'TIES, MATERIALS, LOADS, CONTACT, INCREMENTS, END), found "'//shown(trim(d%cards(ic)%text))//'"')
             call skip_to_block(d)
             ic = 0
             return
@@ -336,6 +339,11 @@ contains
       end if
       ic = d%next()
       m%title = trim(adjustl(d%cards(ic)%text))
+      if (len(m%title) > MAX_TITLE) then
+         call d%error_at(ic, MAX_TITLE + 1, 'E-TITLE', 'TITLE: expected a title of at most '//itoa(MAX_TITLE)// &
+                         ' characters, found '//itoa(len(m%title)))
+         m%title = m%title(1:MAX_TITLE)
+      end if
       call skip_extra(d, 'TITLE')
    end subroutine read_title
 
@@ -349,7 +357,7 @@ contains
          if (is_block_card(d, ic)) exit
          ic = d%next()
          call d%error_at(ic, 1, 'E-EXTRA', card//': block has one card only; unexpected card "'// &
-                         trim(d%cards(ic)%text)//'"')
+                         shown(trim(d%cards(ic)%text))//'"')
       end do
    end subroutine skip_extra
 
@@ -524,7 +532,7 @@ contains
          if (len_trim(d%field_text(ic, 11 + 5*m%nnode, 10000)) > 0) then
             call d%error_at(ic, 11 + 5*m%nnode, 'E-EXTRA', 'ELEMENTS: NNODE = '//itoa(m%nnode)// &
                             ' on the control card, but the card has more fields: "'// &
-                            trim(adjustl(d%field_text(ic, 11 + 5*m%nnode, 10000)))//'"')
+                            shown(trim(adjustl(d%field_text(ic, 11 + 5*m%nnode, 10000))))//'"')
             ok = .false.
          end if
          if (.not. ok) cycle
@@ -614,9 +622,11 @@ contains
          call d%get_int(ic, 1, 5, 'NODES', 'IPOIN', ipoin, ok)
          call d%get_real(ic, 6, 15, 'NODES', 'X', x, ok)
          call d%get_real(ic, 16, 25, 'NODES', 'Y', y, ok)
+         call d%check_coordinate(ic, 6, 'NODES', 'X', x, ok)
+         call d%check_coordinate(ic, 16, 'NODES', 'Y', y, ok)
          if (len_trim(d%field_text(ic, 26, 10000)) > 0) then
             call d%error_at(ic, 26, 'E-EXTRA', 'NODES: expected IPOIN, X, Y in columns 1-25, found more: "'// &
-                            trim(adjustl(d%field_text(ic, 26, 10000)))//'"')
+                            shown(trim(adjustl(d%field_text(ic, 26, 10000))))//'"')
             ok = .false.
          end if
          if (.not. ok) cycle
@@ -680,6 +690,8 @@ contains
          call d%get_real(ic, 21, 30, 'RESTRAINTS', 'UY', uy, ok, default=0.0_dp)
          call d%get_int(ic, 31, 35, 'RESTRAINTS', 'CASE', icase, ok, default=1)
          call check_tail(d, ic, 36, 'RESTRAINTS', 'NODE, CODE, UX, UY, CASE in columns 1-35', ok)
+         call d%check_magnitude(ic, 11, 'RESTRAINTS', 'UX', ux, ok)
+         call d%check_magnitude(ic, 21, 'RESTRAINTS', 'UY', uy, ok)
          if (n >= size(list)) list = [list, list]
          n = n + 1
          list(n) = restraint_t()
@@ -694,8 +706,9 @@ contains
                             '01 (y fixed) or 11 (both), found '//itoa(code))
             cycle
          end if
-         if (icase < 1) then
-            call d%error_at(ic, 31, 'E-RANGE', 'RESTRAINTS: CASE (columns 31-35) expected a load case >= 1, found '// &
+         if (icase < 1 .or. icase > MAX_CASE) then
+            call d%error_at(ic, 31, 'E-RANGE', 'RESTRAINTS: CASE (columns 31-35) expected a load case '// &
+                         '1..'//itoa(MAX_CASE)//', found '// &
                             itoa(icase))
             cycle
          end if
@@ -732,7 +745,7 @@ contains
       character(len=:), allocatable :: tail
       tail = trim(adjustl(d%field_text(ic, col, 100000)))
       if (len(tail) > 0) then
-         call d%error_at(ic, col, 'E-EXTRA', card//': expected '//expected//', found more: "'//tail//'"')
+         call d%error_at(ic, col, 'E-EXTRA', card//': expected '//expected//', found more: "'//shown(tail)//'"')
          ok = .false.
       end if
    end subroutine check_tail
@@ -785,6 +798,12 @@ contains
             call warnings%add('W-THICK', 'MATERIALS: THICK is ignored in axisymmetric analysis (the ring '// &
                               'weight 2*pi*r is used)', file=d%file, line=d%cards(ic)%line, col=26)
          end if
+         if (e > 0.0_dp .and. nu > -1.0_dp .and. nu < 0.5_dp .and. t > 0.0_dp) then
+            if (.not. stiffness_fits(e, nu, t)) call d%error_at(ic, 6, 'E-MATERIAL', 'MATERIALS: E = '//rtoa(e)// &
+                ', NU = '//rtoa(nu)//' and THICK = '//rtoa(t)//' give elastic constants beyond '// &
+                rtoa(sqrt(huge(1.0_dp)))//' or below '//rtoa(1.0_dp/sqrt(huge(1.0_dp)))// &
+                ' (the analysis multiplies loads by compliances and displacements by stiffnesses): out of range')
+         end if
          m%mats(imat) = material_t(young=e, poiss=nu, thick=t, line=d%cards(ic)%line)
       end do
       if (ncards /= m%nmats) then
@@ -794,6 +813,29 @@ contains
          call report_missing(d, ickw, 'MATERIALS', 'material', line_of)
       end if
    end subroutine read_materials
+
+   !> Whether the constants of the elasticity matrix D (MODPS: E/(1-nu^2),
+   !! E(1-nu)/((1+nu)(1-2nu)), its nu/(1-nu) multiple, G = E/(2(1+nu))),
+   !! times the thickness, stay within [1/sqrt(huge), sqrt(huge)]: the analysis
+   !! multiplies displacements by stiffnesses (K u, the Schur complement
+   !! K_cb K_bb^-1 K_bc) and loads by compliances (u = K^-1 f), and loads and
+   !! prescribed displacements are bounded by sqrt(huge) (check_magnitude), so
+   !! that every such product stays representable.  Evaluated on logarithms,
+   !! so that the check itself cannot overflow.
+   !! Ref: Hinton & Owen, *Finite Element Programming*, routine MODPS.
+   pure logical function stiffness_fits(e, nu, t)
+      real(dp), intent(in) :: e      !! Young's modulus [stress], > 0
+      real(dp), intent(in) :: nu     !! Poisson's ratio, in (-1, 0.5)
+      real(dp), intent(in) :: t      !! thickness [length], > 0
+      real(dp) :: lmax, lmin
+      lmax = log(e) + log(max(t, 1.0_dp)) + max(-log(1.0_dp - nu*nu), &
+             log(1.0_dp - nu) - log(1.0_dp + nu) - log(1.0_dp - 2.0_dp*nu), &
+             log(max(abs(nu), tiny(1.0_dp))) - log(1.0_dp + nu) - log(1.0_dp - 2.0_dp*nu), &
+             -log(2.0_dp*(1.0_dp + nu)))
+      ! the diagonal constants are at least G = E/(2(1+nu)) > E/3
+      lmin = log(e) + log(min(t, 1.0_dp)) - log(3.0_dp)
+      stiffness_fits = lmax < 0.5_dp*log(huge(1.0_dp)) .and. lmin > -0.5_dp*log(huge(1.0_dp))
+   end function stiffness_fits
 
    ! ------------------------------------------------------------------ LOADS
 
@@ -825,7 +867,7 @@ contains
             sub = d%keyword(ic)
             if (all(sub /= [character(len=5) :: 'POINT', 'EDGE', 'BODY'])) then
                call d%error_at(ic, 1, 'E-CARD', 'LOADS: expected a sub-block keyword POINT, EDGE or BODY, '// &
-                               'or a load card, found "'//trim(d%cards(ic)%text)//'"')
+                               'or a load card, found "'//shown(trim(d%cards(ic)%text))//'"')
                sub = 'BAD'
             end if
             cycle
@@ -836,6 +878,13 @@ contains
             npl = npl + 1
             call read_point_load(d, ic, m, pl(npl))
          case ('EDGE')
+            if (.not. allocated(m%nnode_e)) then
+               ! the card names an element, and no element was read
+               call d%error_at(ic, 1, 'E-CARD', 'LOADS/EDGE: an edge load refers to element numbers, but no '// &
+                               'elements were read (the ELEMENTS block is missing or was rejected)')
+               sub = 'BAD'
+               cycle
+            end if
             if (nel >= size(el)) el = [el, el]
             nel = nel + 1
             call read_edge_load(d, ic, m, el(nel))
@@ -845,7 +894,7 @@ contains
             call read_body_load(d, ic, m, bl(nbl))
          case ('')
             call d%error_at(ic, 1, 'E-CARD', 'LOADS: a load card must follow a sub-block keyword '// &
-                            'POINT, EDGE or BODY, found "'//trim(d%cards(ic)%text)//'"')
+                            'POINT, EDGE or BODY, found "'//shown(trim(d%cards(ic)%text))//'"')
             sub = 'BAD'
          case default
             continue   ! cards under a bad sub-block keyword were already reported
@@ -870,14 +919,17 @@ contains
       call d%get_real(ic, 16, 25, 'LOADS/POINT', 'FY', fy, ok, default=0.0_dp)
       call d%get_int(ic, 26, 30, 'LOADS/POINT', 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 31, 'LOADS/POINT', 'NODE, FX, FY, CASE in columns 1-30', ok)
+      call d%check_magnitude(ic, 6, 'LOADS/POINT', 'FX', fx, ok)
+      call d%check_magnitude(ic, 16, 'LOADS/POINT', 'FY', fy, ok)
       if (.not. ok) return
       if (node < 1 .or. node > m%npoin) then
          call d%error_at(ic, 1, 'E-RANGE', 'LOADS/POINT: NODE (columns 1-5) expected a node number 1..'// &
                          itoa(m%npoin)//', found '//itoa(node))
          return
       end if
-      if (icase < 1) then
-         call d%error_at(ic, 26, 'E-RANGE', 'LOADS/POINT: CASE (columns 26-30) expected a load case >= 1, found '// &
+      if (icase < 1 .or. icase > MAX_CASE) then
+         call d%error_at(ic, 26, 'E-RANGE', 'LOADS/POINT: CASE (columns 26-30) expected a load case '// &
+                         '1..'//itoa(MAX_CASE)//', found '// &
                          itoa(icase))
          return
       end if
@@ -907,14 +959,19 @@ contains
       end do
       call d%get_int(ic, 81, 85, card, 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 86, card, 'IELEM, N1-N3, PN1-PN3, PT1-PT3, CASE in columns 1-85', ok)
+      do k = 1, 3
+         call d%check_magnitude(ic, 11 + 10*k, card, 'PN'//itoa(k), pn(k), ok)
+         call d%check_magnitude(ic, 41 + 10*k, card, 'PT'//itoa(k), pt(k), ok)
+      end do
       if (.not. ok) return
       if (ielem < 1 .or. ielem > m%nelem) then
          call d%error_at(ic, 1, 'E-RANGE', card//': IELEM (columns 1-5) expected an element number 1..'// &
                          itoa(m%nelem)//', found '//itoa(ielem))
          return
       end if
-      if (icase < 1) then
-         call d%error_at(ic, 81, 'E-RANGE', card//': CASE (columns 81-85) expected a load case >= 1, found '// &
+      if (icase < 1 .or. icase > MAX_CASE) then
+         call d%error_at(ic, 81, 'E-RANGE', card//': CASE (columns 81-85) expected a load case '// &
+                         '1..'//itoa(MAX_CASE)//', found '// &
                          itoa(icase))
          return
       end if
@@ -995,14 +1052,17 @@ contains
       call d%get_real(ic, 16, 25, 'LOADS/BODY', 'BY', by, ok, default=0.0_dp)
       call d%get_int(ic, 26, 30, 'LOADS/BODY', 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 31, 'LOADS/BODY', 'MATNO, BX, BY, CASE in columns 1-30', ok)
+      call d%check_magnitude(ic, 6, 'LOADS/BODY', 'BX', bx, ok)
+      call d%check_magnitude(ic, 16, 'LOADS/BODY', 'BY', by, ok)
       if (.not. ok) return
       if (imat < 0 .or. imat > m%nmats) then
          call d%error_at(ic, 1, 'E-RANGE', 'LOADS/BODY: MATNO (columns 1-5) expected 0 (all) or 1..'// &
                          itoa(m%nmats)//', found '//itoa(imat))
          return
       end if
-      if (icase < 1) then
-         call d%error_at(ic, 26, 'E-RANGE', 'LOADS/BODY: CASE (columns 26-30) expected a load case >= 1, found '// &
+      if (icase < 1 .or. icase > MAX_CASE) then
+         call d%error_at(ic, 26, 'E-RANGE', 'LOADS/BODY: CASE (columns 26-30) expected a load case '// &
+                         '1..'//itoa(MAX_CASE)//', found '// &
                          itoa(icase))
          return
       end if
@@ -1037,6 +1097,13 @@ contains
          do k = 1, ncase
             c1 = 6 + 10*(k - 1)
             call d%get_real(ic, c1, c1 + 9, 'INCREMENTS', 'LAMBDA'//itoa(k), val, ok, default=prev(k))
+            ! the ramp from the previous factor takes differences: bounded so that they cannot overflow
+            if (ok .and. abs(val) > 0.25_dp*huge(val)) then
+               call d%error_at(ic, c1, 'E-RANGE', 'INCREMENTS: LAMBDA'//itoa(k)//' (columns '//itoa(c1)//'-'// &
+                               itoa(c1 + 9)//') expected a load factor of magnitude at most '// &
+                               rtoa(0.25_dp*huge(val))//', found '//rtoa(val))
+               ok = .false.
+            end if
             target(k) = val
          end do
          call check_tail(d, ic, 6 + 10*ncase, 'INCREMENTS', 'NSTEP and '//itoa(ncase)// &
@@ -1049,7 +1116,7 @@ contains
          end if
          if (nincs + nstep > ubound(lam, 2)) call grow(lam, nincs + nstep)
          do i = 1, nstep
-            lam(:, nincs + i) = prev + (target - prev)*real(i, dp)/real(nstep, dp)
+            lam(:, nincs + i) = prev + (target - prev)*(real(i, dp)/real(nstep, dp))
          end do
          nincs = nincs + nstep
          prev = target
@@ -1081,25 +1148,44 @@ contains
    !! added unless the deck restrains u_r itself).
    subroutine finish_model(m)
       type(model_t), intent(inout) :: m
-      integer :: ip, k
+      integer :: ip, k, nadd
       real(dp) :: tol
-      logical :: found
+      integer, allocatable :: fix_of(:)
+      logical, allocatable :: on_axis(:)
+      type(restraint_t), allocatable :: added(:)
       if (m%ntype == NTYPE_AXISYMMETRIC .and. allocated(m%coord)) then
+         ! one pass over the restraints (the first card of each node), one over
+         ! the nodes, and the new restraints added at once: linear in NPOIN
+         allocate (fix_of(m%npoin), on_axis(m%npoin))
+         fix_of = 0
+         do k = size(m%fixes), 1, -1
+            ip = m%fixes(k)%node
+            if (ip >= 1 .and. ip <= m%npoin) fix_of(ip) = k
+         end do
          tol = 1.0e-12_dp*max(maxval(abs(m%coord)), 1.0e-300_dp)
          do ip = 1, m%npoin
             ! a rigid body's reference node moves axially only: a rigid ring
             ! cannot change its radius (its radial restraint is added like
             ! that of a node on the axis)
-            if (abs(m%coord(1, ip)) > tol .and. .not. is_rigid_reference(m%contact_spec, ip)) cycle
-            found = .false.
-            do k = 1, size(m%fixes)
-               if (m%fixes(k)%node == ip) then
-                  m%fixes(k)%fixed(1) = .true.
-                  found = .true.
-               end if
-            end do
-            if (.not. found) m%fixes = [m%fixes, restraint_t(node=ip, fixed=[.true., .false.])]
+            on_axis(ip) = abs(m%coord(1, ip)) <= tol .or. is_rigid_reference(m%contact_spec, ip)
          end do
+         do k = 1, size(m%fixes)
+            ip = m%fixes(k)%node
+            if (ip < 1 .or. ip > m%npoin) cycle
+            if (on_axis(ip)) m%fixes(k)%fixed(1) = .true.
+         end do
+         nadd = count(on_axis .and. fix_of == 0)
+         if (nadd > 0) then
+            allocate (added(size(m%fixes) + nadd))
+            added(1:size(m%fixes)) = m%fixes
+            k = size(m%fixes)
+            do ip = 1, m%npoin
+               if (.not. (on_axis(ip) .and. fix_of(ip) == 0)) cycle
+               k = k + 1
+               added(k) = restraint_t(node=ip, fixed=[.true., .false.])
+            end do
+            call move_alloc(added, m%fixes)
+         end if
       end if
       m%ncase = max(1, maxval([1, m%fixes%icase, m%point_loads%icase, m%edge_loads%icase, m%body_loads%icase]))
       if (m%nincs == 0) then

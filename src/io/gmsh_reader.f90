@@ -22,11 +22,15 @@
 !!
 !! Ref: gmsh reference manual, section "MSH file format" (versions 4.1 and 2.2).
 module gmsh_reader
+   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
+                                            ieee_set_flag
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
    use errors, only: error_list_t
    use strings, only: itoa, rtoa, same_name
    use model, only: model_t, node_set_t, edge_set_t, MAX_NODE
    use topology, only: element_edge_nodes, nedges
+   use deck_lexer, only: MAX_COORDINATE
    implicit none
    private
 
@@ -307,6 +311,29 @@ contains
       end do
    end subroutine read_ints
 
+   !> A count read from the file is bounded by what the file can still hold:
+   !! `per` lines per entry after line il (a negative count is an error too),
+   !! so that no array is sized from a count the file cannot back.
+   subroutine check_count(t, section, what, n, per, il, errors, ok)
+      type(msh_text_t), intent(in) :: t
+      character(len=*), intent(in) :: section, what   !! section name, what is counted
+      integer, intent(in) :: n                        !! the count
+      integer, intent(in) :: per                      !! lines each entry takes at least
+      integer, intent(in) :: il                       !! line of the count
+      type(error_list_t), intent(inout) :: errors
+      logical, intent(inout) :: ok
+      if (.not. ok) return
+      if (n < 0) then
+         call errors%add('E-GMSH', '$'//section//': expected a number of '//what//' >= 0, found '//itoa(n), &
+                         file=t%path, line=il)
+         ok = .false.
+      else if (n > (t%nlines - il)/per) then
+         call errors%add('E-GMSH', 'truncated file: it ends inside $'//section//' ('//itoa(n)//' '//what// &
+                         ' declared, the file has only '//itoa(t%nlines - il)//' more lines)', file=t%path, line=il)
+         ok = .false.
+      end if
+   end subroutine check_count
+
    !> Blank-separated tokens of a line: bounds b(1:2, k), count nt (at most size(b, 2)).
    pure subroutine tokens(line, b, nt)
       character(len=*), intent(in) :: line
@@ -355,6 +382,7 @@ contains
       logical, intent(inout) :: ok
       character(len=:), allocatable :: line
       integer :: b(2, 64), nt, k, ios
+      logical :: halt
       line = get_line(t, il)
       call tokens(line, b, nt)
       if (nt < first + n - 1) then
@@ -364,7 +392,34 @@ contains
          return
       end if
       do k = 1, n
-         read (line(b(1, first + k - 1):b(2, first + k - 1)), *, iostat=ios) x(k)
+         associate (tok => line(b(1, first + k - 1):b(2, first + k - 1)))
+            ! a literal beyond the range of real(dp) overflows inside the
+            ! conversion: with overflow trapping on (Debug builds) that would stop
+            ! the program before the check below could report it
+            call ieee_get_halting_mode(ieee_overflow, halt)
+            if (halt) call ieee_set_halting_mode(ieee_overflow, .false.)
+            read (tok, *, iostat=ios) x(k)
+            call ieee_set_flag(ieee_overflow, .false.)
+            if (halt) call ieee_set_halting_mode(ieee_overflow, .true.)
+            ! (ieee_is_finite: an ordered comparison with a NaN would trap in Debug builds)
+            if (ios == 0) then
+               if (.not. ieee_is_finite(x(k))) then
+                  ! NaN, Inf, or out of range: every real read from a file is finite
+                  call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'//short(tok)// &
+                                  '": not a finite number', file=t%path, line=il)
+                  ok = .false.
+               else if (abs(x(k)) > MAX_COORDINATE) then
+                  call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'//short(tok)// &
+                                  '": beyond '//rtoa(MAX_COORDINATE)//' in magnitude (the geometry squares '// &
+                                  'lengths)', file=t%path, line=il)
+                  ok = .false.
+               end if
+               if (.not. ok) then
+                  x(k) = 0.0_dp
+                  return
+               end if
+            end if
+         end associate
          if (ios /= 0) then
             call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'// &
                             line(b(1, first + k - 1):b(2, first + k - 1))//'" where a number belongs', &
@@ -472,6 +527,7 @@ contains
       character(len=:), allocatable :: line
       ok = .true.
       call read_ints(t, 'PhysicalNames', 'the number of physical names', 1, v, errors, ok, il)
+      call check_count(t, 'PhysicalNames', 'physical names', v(1), 1, il, errors, ok)
       if (.not. ok) return
       n = v(1)
       do k = 1, n
@@ -502,6 +558,9 @@ contains
       character(len=:), allocatable :: line
       ok = .true.
       call read_ints(t, 'Entities', 'numPoints numCurves numSurfaces numVolumes', 4, v, errors, ok, il)
+      do dim = 1, 4
+         call check_count(t, 'Entities', 'entities', v(dim), 1, il, errors, ok)
+      end do
       if (.not. ok) return
       nent = v
       deallocate (ents)
@@ -526,7 +585,7 @@ contains
             end if
             read (line(b(1, 1):b(2, 1)), *, iostat=ios) ents(k, dim)%tag
             if (ios == 0) read (line(b(1, first):b(2, first)), *, iostat=ios) nphys
-            if (ios /= 0 .or. nt < first + max(nphys, 0)) then
+            if (ios /= 0 .or. nphys < 0 .or. nt < first + max(nphys, 0)) then
                call errors%add('E-GMSH', '$Entities: cannot read the tag and physical tags of "'// &
                                short(trim(line))//'"', file=t%path, line=il)
                ok = .false.
@@ -557,6 +616,8 @@ contains
       integer :: v(4), il, nblk, ib, nin, k, n, param, tagline(1)
       ok = .true.
       call read_ints(t, 'Nodes', 'numEntityBlocks numNodes minNodeTag maxNodeTag', 4, v, errors, ok, il)
+      call check_count(t, 'Nodes', 'entity blocks', v(1), 1, il, errors, ok)
+      call check_count(t, 'Nodes', 'nodes', v(2), 2, il, errors, ok)
       if (.not. ok) return
       nblk = v(1)
       call alloc_nodes(msh, v(2))
@@ -567,6 +628,8 @@ contains
          if (.not. ok) return
          param = v(3)
          nin = v(4)
+         call check_count(t, 'Nodes', 'nodes in the block', nin, 2, il, errors, ok)
+         if (.not. ok) return
          if (param /= 0) then
             call errors%add('E-GMSH', '$Nodes: parametric node coordinates are not supported; '// &
                             'save without Mesh.SaveParametric', file=t%path, line=il)
@@ -616,6 +679,7 @@ contains
       integer :: v(1), il, k
       ok = .true.
       call read_ints(t, 'Nodes', 'the number of nodes', 1, v, errors, ok, il)
+      call check_count(t, 'Nodes', 'nodes', v(1), 1, il, errors, ok)
       if (.not. ok) return
       call alloc_nodes(msh, v(1))
       do k = 1, msh%nnodes
@@ -664,6 +728,8 @@ contains
       integer :: v(MAX_NODE + 1), il, nblk, ib, edim, etag, ety, nin, k, n, nn, ie, j
       ok = .true.
       call read_ints(t, 'Elements', 'numEntityBlocks numElements minElementTag maxElementTag', 4, v, errors, ok, il)
+      call check_count(t, 'Elements', 'entity blocks', v(1), 1, il, errors, ok)
+      call check_count(t, 'Elements', 'elements', v(2), 1, il, errors, ok)
       if (.not. ok) return
       nblk = v(1)
       call alloc_elements(msh, v(2))
@@ -676,6 +742,8 @@ contains
          etag = v(2)
          ety = v(3)
          nin = v(4)
+         call check_count(t, 'Elements', 'elements in the block', nin, 1, il, errors, ok)
+         if (.not. ok) return
          nn = gmsh_nnode(ety)
          if (nn == 0) then
             call errors%add('E-GMSH', 'unsupported element type '//itoa(ety)//' ('//type_name(ety)// &
@@ -729,6 +797,7 @@ contains
       integer :: v(3 + 16 + MAX_NODE), il, k, ety, ntags, nn
       ok = .true.
       call read_ints(t, 'Elements', 'the number of elements', 1, v, errors, ok, il)
+      call check_count(t, 'Elements', 'elements', v(1), 1, il, errors, ok)
       if (.not. ok) return
       call alloc_elements(msh, v(1))
       do k = 1, msh%nelems
@@ -878,7 +947,7 @@ contains
       integer, intent(in) :: nnode_req
       type(model_t), intent(inout) :: m
       type(error_list_t), intent(inout) :: errors
-      integer, allocatable :: surf(:), sorted(:), eptr(:), elist(:)
+      integer, allocatable :: surf(:), tags(:), model_of(:), eptr(:), elist(:)
       integer :: k, g, n0
       logical :: ok
 
@@ -896,14 +965,14 @@ contains
       allocate (m%matno(size(surf)))
       call assign_materials(msh, surf, mat_names, mat_numbers, deck_file, m%matno, errors)
       if (errors%n > n0) return
-      call number_nodes(msh, surf, m, sorted, errors, ok)
+      call number_nodes(msh, surf, m, tags, model_of, errors, ok)
       if (.not. ok) return
       call node_elements(m, eptr, elist)
       ! physical curves and points: node sets and edge sets
       allocate (m%node_sets(0), m%edge_sets(0))
       do g = 1, size(msh%groups)
          if (msh%groups(g)%dim > 1) cycle
-         call build_sets(msh, g, sorted, eptr, elist, m, errors)
+         call build_sets(msh, g, tags, model_of, eptr, elist, m, errors)
          if (errors%n > n0) return
       end do
    end subroutine gmsh_to_model
@@ -1016,60 +1085,54 @@ contains
    end function name_index
 
    !> The nodes and elements of the model: the nodes used by the 2-D elements
-   !! surf, numbered 1..npoin in increasing tag order (sorted(tag) = node, 0
-   !! for an unused tag; bounds tmin:tmax of the tags), and the elements with
-   !! their corners made anticlockwise.  ok is false if a tag is defined
-   !! twice or used but not defined (reported).
-   subroutine number_nodes(msh, surf, m, sorted, errors, ok)
+   !! surf, numbered 1..npoin in increasing tag order, and the elements with
+   !! their corners made anticlockwise.  The tags are sorted (tags, with
+   !! model_of(k) the model node of tags(k), 0 for an unused tag), so that
+   !! memory and time follow the number of nodes, not the size of the tags.
+   !! ok is false if a tag is defined twice or used but not defined (reported).
+   subroutine number_nodes(msh, surf, m, tags, model_of, errors, ok)
       type(gmsh_mesh_t), intent(in) :: msh
       integer, intent(in) :: surf(:)
       type(model_t), intent(inout) :: m                !! matno set; mesh filled here
-      integer, allocatable, intent(out) :: sorted(:)
+      integer, allocatable, intent(out) :: tags(:)     !! the node tags of $Nodes, ascending
+      integer, allocatable, intent(out) :: model_of(:) !! model node of tags(k), 0 if unused
       type(error_list_t), intent(inout) :: errors
       logical, intent(out) :: ok
-      integer, allocatable :: idx_of(:)
-      logical, allocatable :: used(:)
-      integer :: k, j, ie, nn, ip, tmin, tmax, nelem, npoin
+      integer, allocatable :: perm(:)
+      integer :: k, j, ie, nn, ip, nelem, npoin, n
 
       ok = .false.
       nelem = size(surf)
-      tmin = minval(msh%node_tag)
-      tmax = maxval(msh%node_tag)
-      allocate (idx_of(tmin:tmax), used(tmin:tmax))
-      idx_of = 0
-      used = .false.
-      do k = 1, msh%nnodes
-         if (idx_of(msh%node_tag(k)) /= 0) then
-            call errors%add('E-GMSH', 'node tag '//itoa(msh%node_tag(k))//' appears twice in $Nodes', &
-                            file=msh%path, line=msh%node_line(k))
+      n = msh%nnodes
+      allocate (perm(n), model_of(n))
+      perm = [(k, k=1, n)]
+      call sort_by_key(msh%node_tag, perm)
+      tags = msh%node_tag(perm)
+      do k = 2, n
+         if (tags(k) == tags(k - 1)) then
+            call errors%add('E-GMSH', 'node tag '//itoa(tags(k))//' appears twice in $Nodes', &
+                            file=msh%path, line=max(msh%node_line(perm(k)), msh%node_line(perm(k - 1))))
             return
          end if
-         idx_of(msh%node_tag(k)) = k
       end do
+      model_of = 0
       do ie = 1, nelem
          k = surf(ie)
          do j = 1, gmsh_nnode(msh%etype(k))
-            ip = msh%enodes(j, k)
-            if (ip < tmin .or. ip > tmax) then
-               call bad_node(k, ip)
+            ip = tag_index(tags, msh%enodes(j, k))
+            if (ip == 0) then
+               call errors%add('E-GMSH', 'element refers to node tag '//itoa(msh%enodes(j, k))// &
+                               ', which $Nodes does not define', file=msh%path, line=msh%eline(k))
                return
             end if
-            if (idx_of(ip) == 0) then
-               call bad_node(k, ip)
-               return
-            end if
-            used(ip) = .true.
+            model_of(ip) = 1
          end do
       end do
-      npoin = count(used)
-      allocate (sorted(tmin:tmax))
-      sorted = 0
-      ip = 0
-      do j = tmin, tmax
-         if (used(j)) then
-            ip = ip + 1
-            sorted(j) = ip
-         end if
+      npoin = 0
+      do k = 1, n
+         if (model_of(k) == 0) cycle
+         npoin = npoin + 1
+         model_of(k) = npoin
       end do
       m%npoin = npoin
       m%nelem = nelem
@@ -1081,12 +1144,11 @@ contains
       if (allocated(m%elem_line)) deallocate (m%elem_line)
       allocate (m%coord(2, npoin), m%node_tag(npoin), m%node_line(npoin), m%lnods(MAX_NODE, nelem), &
                 m%nnode_e(nelem), m%elem_line(nelem))
-      do j = tmin, tmax
-         if (sorted(j) > 0) then
-            m%coord(:, sorted(j)) = msh%xyz(1:2, idx_of(j))
-            m%node_tag(sorted(j)) = j
-            m%node_line(sorted(j)) = msh%node_line(idx_of(j))
-         end if
+      do k = 1, n
+         if (model_of(k) == 0) cycle
+         m%coord(:, model_of(k)) = msh%xyz(1:2, perm(k))
+         m%node_tag(model_of(k)) = tags(k)
+         m%node_line(model_of(k)) = msh%node_line(perm(k))
       end do
       m%lnods = 0
       do ie = 1, nelem
@@ -1095,20 +1157,83 @@ contains
          m%nnode_e(ie) = nn
          m%elem_line(ie) = msh%eline(k)
          do j = 1, nn
-            m%lnods(j, ie) = sorted(msh%enodes(j, k))
+            m%lnods(j, ie) = model_of(tag_index(tags, msh%enodes(j, k)))
          end do
          ! anticlockwise corners: reverse a clockwise element
          if (signed_area(m, ie) < 0.0_dp) call reverse_element(m%lnods(1:nn, ie))
       end do
       m%nnode = maxval(m%nnode_e)
       ok = .true.
-   contains
-      subroutine bad_node(k, tag)
-         integer, intent(in) :: k, tag
-         call errors%add('E-GMSH', 'element refers to node tag '//itoa(tag)//', which $Nodes does not define', &
-                         file=msh%path, line=msh%eline(k))
-      end subroutine bad_node
    end subroutine number_nodes
+
+   !> Position of tag in the ascending list tags (binary search), 0 if absent.
+   pure integer function tag_index(tags, tag) result(k)
+      integer, intent(in) :: tags(:)
+      integer, intent(in) :: tag
+      integer :: lo, hi, mid
+      lo = 1
+      hi = size(tags)
+      k = 0
+      do while (lo <= hi)
+         mid = lo + (hi - lo)/2
+         if (tags(mid) == tag) then
+            k = mid
+            return
+         else if (tags(mid) < tag) then
+            lo = mid + 1
+         else
+            hi = mid - 1
+         end if
+      end do
+   end function tag_index
+
+   !> The model node of a tag (0 for a tag of no used node).
+   pure integer function model_node(tags, model_of, tag) result(q)
+      integer, intent(in) :: tags(:), model_of(:), tag
+      integer :: k
+      q = 0
+      k = tag_index(tags, tag)
+      if (k > 0) q = model_of(k)
+   end function model_node
+
+   !> Sort the permutation perm so that key(perm) ascends (a merge sort, stable:
+   !! n log n, whatever the keys).
+   pure subroutine sort_by_key(key, perm)
+      integer, intent(in) :: key(:)
+      integer, intent(inout) :: perm(:)
+      integer, allocatable :: work(:)
+      integer :: width, lo, mid, hi, i, j, k, n
+      n = size(perm)
+      allocate (work(n))
+      width = 1
+      do while (width < n)
+         lo = 1
+         do while (lo <= n)
+            mid = min(lo + width - 1, n)
+            hi = min(lo + 2*width - 1, n)
+            i = lo
+            j = mid + 1
+            do k = lo, hi
+               if (j > hi) then
+                  work(k) = perm(i)
+                  i = i + 1
+               else if (i > mid) then
+                  work(k) = perm(j)
+                  j = j + 1
+               else if (key(perm(j)) < key(perm(i))) then
+                  work(k) = perm(j)
+                  j = j + 1
+               else
+                  work(k) = perm(i)
+                  i = i + 1
+               end if
+            end do
+            lo = lo + 2*width
+         end do
+         perm = work
+         width = 2*width
+      end do
+   end subroutine sort_by_key
 
    !> The elements of every node, in compressed rows: those of node ip are
    !! elist(eptr(ip):eptr(ip+1)-1).
@@ -1142,26 +1267,27 @@ contains
    !> Node set (and for a curve the edge set) of physical group g: its
    !! elements' nodes, and each of its line elements located as an edge of a
    !! 2-D element (sorted: model node of each tag; eptr/elist: node_elements).
-   subroutine build_sets(msh, g, sorted, eptr, elist, m, errors)
+   subroutine build_sets(msh, g, tags, model_of, eptr, elist, m, errors)
       type(gmsh_mesh_t), intent(in) :: msh
       integer, intent(in) :: g
-      integer, allocatable, intent(in) :: sorted(:)
+      integer, intent(in) :: tags(:), model_of(:)    !! the sorted node tags and their model nodes
       integer, intent(in) :: eptr(:), elist(:)
       type(model_t), intent(inout) :: m
       type(error_list_t), intent(inout) :: errors
       integer, allocatable :: sel(:), sed(:)
+      integer :: nsel
       logical :: inset(m%npoin)
       integer :: k, j, q, tag, iedge, nloc, ie2, mid
       associate (grp => msh%groups(g))
-         allocate (sel(0), sed(0))
+         allocate (sel(msh%nelems), sed(msh%nelems))
+         nsel = 0
          inset = .false.
          do k = 1, msh%nelems
             if (gmsh_dim(msh%etype(k)) /= grp%dim) cycle
             if (.not. any(msh%ephys(1:msh%nphys(k), k) == grp%tag)) cycle
             do j = 1, gmsh_nnode(msh%etype(k))
                tag = msh%enodes(j, k)
-               q = 0
-               if (tag >= lbound(sorted, 1) .and. tag <= ubound(sorted, 1)) q = sorted(tag)
+               q = model_node(tags, model_of, tag)
                if (q == 0) then
                   call errors%add('E-GMSH', 'physical group "'//grp%name//'": node tag '//itoa(tag)// &
                                   ' belongs to no 2-D element of the mesh', file=msh%path, line=msh%eline(k))
@@ -1172,8 +1298,9 @@ contains
             if (grp%dim /= 1) cycle
             ! locate the line element as an edge of a 2-D element
             mid = 0
-            if (msh%etype(k) == 8) mid = sorted(msh%enodes(3, k))
-            call find_edge(m, eptr, elist, sorted(msh%enodes(1, k)), sorted(msh%enodes(2, k)), mid, ie2, iedge, nloc)
+            if (msh%etype(k) == 8) mid = model_node(tags, model_of, msh%enodes(3, k))
+            call find_edge(m, eptr, elist, model_node(tags, model_of, msh%enodes(1, k)), &
+                           model_node(tags, model_of, msh%enodes(2, k)), mid, ie2, iedge, nloc)
             if (ie2 < 0) then
                call errors%add('E-GMSH', 'physical curve "'//grp%name//'": a '// &
                                itoa(gmsh_nnode(msh%etype(k)))//'-node line lies on a '// &
@@ -1185,10 +1312,11 @@ contains
                                'edge of any 2-D element', file=msh%path, line=msh%eline(k))
                return
             end if
-            sel = [sel, ie2]
-            sed = [sed, iedge]
+            nsel = nsel + 1
+            sel(nsel) = ie2
+            sed(nsel) = iedge
          end do
-         call add_sets(m, grp%name, pack([(q, q=1, m%npoin)], inset), grp%dim == 1, sel, sed)
+         call add_sets(m, grp%name, pack([(q, q=1, m%npoin)], inset), grp%dim == 1, sel(1:nsel), sed(1:nsel))
       end associate
    end subroutine build_sets
 

@@ -16,8 +16,8 @@
 module group_cards
    use kinds, only: dp
    use strings, only: itoa, rtoa
-   use deck_lexer, only: deck_t
-   use model, only: model_t, restraint_t, point_load_t, edge_load_t, find_node_set, find_edge_set
+   use deck_lexer, only: deck_t, shown
+   use model, only: model_t, MAX_CASE, restraint_t, point_load_t, edge_load_t, find_node_set, find_edge_set
    use topology, only: element_edge_nodes
    implicit none
    private
@@ -87,7 +87,7 @@ contains
       character(len=:), allocatable :: tail
       tail = trim(adjustl(d%field_text(ic, col, 100000)))
       if (len(tail) > 0) then
-         call d%error_at(ic, col, 'E-EXTRA', card//': expected '//expected//', found more: "'//tail//'"')
+         call d%error_at(ic, col, 'E-EXTRA', card//': expected '//expected//', found more: "'//shown(tail)//'"')
          ok = .false.
       end if
    end subroutine check_tail
@@ -113,6 +113,8 @@ contains
       call d%get_real(ic, 46, 55, card, 'UY', uy, ok, default=0.0_dp)
       call d%get_int(ic, 56, 60, card, 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 61, card, 'GROUP, NAME, CODE, UX, UY, CASE in columns 1-60', ok)
+      call d%check_magnitude(ic, 36, card, 'UX', ux, ok)
+      call d%check_magnitude(ic, 46, card, 'UY', uy, ok)
       if (.not. ok) return
       ks = find_node_set(m, name)
       if (ks == 0) then
@@ -125,8 +127,9 @@ contains
                          '01 (y fixed) or 11 (both), found '//itoa(code))
          return
       end if
-      if (icase < 1) then
-         call d%error_at(ic, 56, 'E-RANGE', card//': CASE (columns 56-60) expected a load case >= 1, found '// &
+      if (icase < 1 .or. icase > MAX_CASE) then
+         call d%error_at(ic, 56, 'E-RANGE', card//': CASE (columns 56-60) expected a load case '// &
+                         '1..'//itoa(MAX_CASE)//', found '// &
                          itoa(icase))
          return
       end if
@@ -254,6 +257,8 @@ contains
       call d%get_real(ic, 41, 50, card, names(2), v(2), ok, default=0.0_dp)
       call d%get_int(ic, 51, 55, card, 'CASE', icase, ok, default=1)
       call check_tail(d, ic, 56, card, 'GROUP, NAME, '//names(1)//', '//names(2)//', CASE in columns 1-55', ok)
+      call d%check_magnitude(ic, 31, card, names(1), v(1), ok)
+      call d%check_magnitude(ic, 41, card, names(2), v(2), ok)
       if (.not. ok) return
       if (edges) then
          ks = find_edge_set(m, name)
@@ -265,8 +270,9 @@ contains
                                       'known: '//set_names(m, .false.))
       end if
       if (ks == 0) return
-      if (icase < 1) then
-         call d%error_at(ic, 51, 'E-RANGE', card//': CASE (columns 51-55) expected a load case >= 1, found '// &
+      if (icase < 1 .or. icase > MAX_CASE) then
+         call d%error_at(ic, 51, 'E-RANGE', card//': CASE (columns 51-55) expected a load case '// &
+                         '1..'//itoa(MAX_CASE)//', found '// &
                          itoa(icase))
          ks = 0
       end if

@@ -11,6 +11,7 @@
 !! Ref: Hinton & Owen (1977), OUTPUT.
 module listing
    use kinds, only: dp, pi
+   use errors, only: status_t, STAT_IO
    use strings, only: itoa, rtoa
    use version, only: K2D_VERSION
    use model, only: model_t, ntype_name
@@ -22,8 +23,29 @@ module listing
    public :: list_header, list_method, list_input, list_step, list_displacements, list_stresses, &
              principal_stresses, list_contact, list_progress_header, list_progress
    public :: list_completed, list_failed, list_sliding_warning, list_doubts, list_interfaces
+   public :: close_listing
 
 contains
+
+   !> Close the listing file and check that all of it reached the disk.
+   !! gfortran reports no error when a formatted write, a flush or a close
+   !! meets a full disk, so the size of the closed file is compared with the
+   !! position written (the unit is opened for formatted stream access).  A
+   !! shortfall is returned in `status` (when it is still ok).
+   subroutine close_listing(u, path, status)
+      integer, intent(in) :: u                    !! the listing's unit (stream access)
+      character(len=*), intent(in) :: path        !! its file
+      type(status_t), intent(inout) :: status
+      integer :: pos, ios, ios2, nbytes
+      pos = 1
+      inquire (unit=u, pos=pos, iostat=ios)
+      close (u, iostat=ios2)
+      nbytes = -1
+      inquire (file=path, size=nbytes)
+      if (.not. status%ok()) return
+      if (ios /= 0 .or. ios2 /= 0 .or. nbytes < pos - 1) call status%set(STAT_IO, 'cannot write the listing '// &
+          path//': '//itoa(max(nbytes, 0))//' of '//itoa(pos - 1)//' bytes reached the disk (is it full?)')
+   end subroutine close_listing
 
    !> Program banner and the control data.
    subroutine list_header(u, m, info)
@@ -135,7 +157,9 @@ contains
          write (u, '(/a)') ' EDGE LOADS (nodes in element order: start, end, mid)'
          do k = 1, size(m%edge_loads)
             associate (e => m%edge_loads(k))
-               write (u, '(a,i0,a,3i7,a,i0)') '   element ', e%ielem, '  nodes', e%nodes(1:e%nn), '  case ', e%icase
+               ! e%nn (2 or 3) node fields: a fixed count would read the text after them as one
+               write (u, '(a,i0,a,'//itoa(e%nn)//'i7,a,i0)') '   element ', e%ielem, '  nodes', e%nodes(1:e%nn), &
+                  '  case ', e%icase
                write (u, '(a,3es14.5)') '      pressure  ', e%pn(1:e%nn)
                write (u, '(a,3es14.5)') '      tangential', e%pt(1:e%nn)
             end associate
@@ -150,7 +174,7 @@ contains
       end if
       write (u, '(/a)') ' LOAD HISTORY (total factor of each load case after each increment)'
       do i = 1, m%nincs
-         write (u, '(i7, 6f12.5)') i, m%lambda(:, i)
+         write (u, '(i7, *(f12.5))') i, m%lambda(:, i)
       end do
    end subroutine list_input
 
@@ -175,7 +199,7 @@ contains
       type(body_fields_t), intent(in) :: body
       integer :: ip
       write (u, '(/a)') repeat('-', 78)
-      write (u, '(a,i0,a,6f11.5)') ' INCREMENT ', step%step, '   load factor(s):', step%lambda
+      write (u, '(a,i0,a,*(f11.5))') ' INCREMENT ', step%step, '   load factor(s):', step%lambda
       if (allocated(step%doubts)) then
          if (len(step%doubts) > 0) write (u, '(a)') ' DOUBTFUL: '//step%doubts
       end if

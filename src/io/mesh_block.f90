@@ -16,7 +16,7 @@
 module mesh_block
    use errors, only: error_list_t
    use strings, only: itoa, same_name
-   use deck_lexer, only: deck_t
+   use deck_lexer, only: deck_t, shown
    use model, only: model_t
    use gmsh_reader, only: gmsh_mesh_t, read_gmsh, gmsh_to_model
    implicit none
@@ -42,7 +42,7 @@ contains
       character(len=:), allocatable :: key, file, name
       character(len=64), allocatable :: names(:)
       integer, allocatable :: mats(:), lines(:)
-      integer :: ic, imat, n0, nmat, k, gmsh_line
+      integer :: ic, imat, n0, nmat, k, gmsh_line, gmsh_card
       logical :: cok
       type(gmsh_mesh_t) :: msh
 
@@ -51,6 +51,7 @@ contains
       name = ''
       key = ''
       gmsh_line = 0
+      gmsh_card = 0
       nmat = 0
       allocate (names(8), mats(8), lines(8))
       do while (.not. d%at_end())
@@ -69,6 +70,7 @@ contains
             end if
             file = trim(adjustl(d%field_text(ic, 11, 100000)))
             gmsh_line = d%cards(ic)%line
+            gmsh_card = ic
             if (len(file) == 0) then
                call d%error_at(ic, 11, 'E-MISSING', 'MESH: GMSH expected the path of a .msh file in columns '// &
                                '11 onwards, found a blank field')
@@ -84,7 +86,7 @@ contains
             call d%get_int(ic, 41, 45, 'MESH/MATERIAL', 'MATNO', imat, cok)
             if (cok .and. len_trim(d%field_text(ic, 46, 100000)) > 0) then
                call d%error_at(ic, 46, 'E-EXTRA', 'MESH/MATERIAL: expected the name (columns 11-40) and MATNO '// &
-                               '(columns 41-45), found more: "'//trim(adjustl(d%field_text(ic, 46, 100000)))//'"')
+                               '(columns 41-45), found more: "'//shown(trim(adjustl(d%field_text(ic, 46, 100000))))//'"')
                cok = .false.
             end if
             if (.not. cok) cycle
@@ -112,7 +114,7 @@ contains
             lines(nmat) = d%cards(ic)%line
          case default
             call d%error_at(ic, 1, 'E-MESH', 'MESH: expected a GMSH or MATERIAL card, found "'// &
-                            trim(d%cards(ic)%text)//'"')
+                            shown(trim(d%cards(ic)%text))//'"')
          end select
       end do
       if (gmsh_line == 0) call d%error_at(ickw, 1, 'E-MESH', 'MESH: the block has no GMSH card naming the mesh file')
@@ -125,6 +127,18 @@ contains
       call read_gmsh(m%mesh_file, msh, d%errors)
       if (d%errors%n == n0) call gmsh_to_model(msh, names(1:nmat), mats(1:nmat), lines(1:nmat), d%file, &
                                                nnode_req, m, d%errors)
+      ! an error about the mesh file as a whole (it cannot be opened, it has no
+      ! 2-D elements, ...) has no line of its own: it is located at the GMSH card
+      do k = n0 + 1, d%errors%n
+         associate (e => d%errors%items(k))
+            if (e%line > 0) cycle
+            e%message = 'MESH: '//e%message
+            e%file = d%file
+            e%line = gmsh_line
+            e%col = 11
+            e%card = shown(trim(d%cards(gmsh_card)%text), 200)
+         end associate
+      end do
       ok = d%errors%n == n0
    end subroutine read_mesh_block
 

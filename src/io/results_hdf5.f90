@@ -44,7 +44,7 @@ module results_hdf5
    use, intrinsic :: iso_c_binding, only: c_double
    use hdf5
    use kinds, only: dp
-   use errors, only: status_t, STAT_IO
+   use errors, only: status_t, STAT_IO, skip_exit_handlers
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t
@@ -204,7 +204,15 @@ contains
       call attr_int(gid, 'cuts', step%cuts, err)
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(step%step))
       if (step%contact .and. present(contact) .and. status%ok()) call write_contact_fields(gid, contact, status)
-      if (.not. status%ok()) return
+      ! `converged` last: a group that a failed write left incomplete is never marked converged
+      if (status%ok()) then
+         call attr_int(gid, 'converged', merge(1, 0, step%converged), err)
+         if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write attributes of increment '//itoa(step%step))
+      end if
+      if (.not. status%ok()) then
+         call drop_increment(this, gid)
+         return
+      end if
       call close_increment(this, gid, status)
    end subroutine results_write_increment
 
@@ -229,11 +237,29 @@ contains
       call attr_real1(gid, 'load_factor', step%lambda, err)
       call attr_int(gid, 'iterations', step%solutions, err)
       call attr_int(gid, 'repeats', step%repeats, err)
-      call attr_int(gid, 'converged', merge(1, 0, step%converged), err)
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write attributes of increment '//itoa(step%step))
    end subroutine open_increment
 
-   !> Close an increment group, record it as completed and flush the file.
+   !> A group that a failed write left incomplete: closed and unlinked, so
+   !! that the file lists only complete increments (its space is lost).
+   subroutine drop_increment(this, gid)
+      class(results_file_t), intent(inout) :: this
+      integer(hid_t), intent(in) :: gid
+      integer :: e
+      call h5gclose_f(gid, e)
+      call h5ldelete_f(this%fid, 'increments/'//group_name(this%inc_open), e)
+   end subroutine drop_increment
+
+   !> Name of the group of step n (NNNNN).
+   pure function group_name(n) result(name)
+      integer, intent(in) :: n
+      character(len=5) :: name
+      write (name, '(i5.5)') n
+   end function group_name
+
+   !> Close an increment group, record it as completed and flush the file:
+   !! the group is flushed first and counted only then, so that
+   !! increments_completed never counts a group that did not reach the disk.
    subroutine close_increment(this, gid, status)
       class(results_file_t), intent(inout) :: this
       integer(hid_t), intent(in) :: gid
@@ -242,6 +268,14 @@ contains
       err = 0
       call h5gclose_f(gid, e)
       call keep(e, err)
+      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, e)
+      call keep(e, err)
+      if (err < 0) then
+         call status%set(STAT_IO, 'HDF5: cannot write increment '//itoa(this%inc_open)//' to '//this%path// &
+                         ' (close its group, flush the file: is the disk full?)')
+         call h5ldelete_f(this%fid, 'increments/'//group_name(this%inc_open), e)
+         return
+      end if
       this%ncompleted = this%ncompleted + 1
       call h5adelete_f(this%fid, 'increments_completed', e)
       call keep(e, err)
@@ -249,9 +283,9 @@ contains
       call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, e)
       call keep(e, err)
       if (err < 0) then
-         call status%set(STAT_IO, 'HDF5: cannot record increment '//itoa(this%ncompleted)// &
-                         ' as completed (close its group, update increments_completed, flush) in '// &
-                         this%path)
+         call status%set(STAT_IO, 'HDF5: cannot record increment '//itoa(this%inc_open)// &
+                         ' as completed (update increments_completed, flush) in '//this%path// &
+                         ' (is the disk full?)')
          return
       end if
       if (allocated(this%incs)) then
@@ -328,22 +362,42 @@ contains
    end subroutine update_xdmf
 
    !> Replace the root attribute `status` (running, completed, failed: ...).
-   subroutine results_set_status(this, text)
+   !! A failure is returned in `status` when it is given (and ok so far).
+   subroutine results_set_status(this, text, status)
       class(results_file_t), intent(inout) :: this
       character(len=*), intent(in) :: text
-      integer :: err
+      type(status_t), intent(inout), optional :: status
+      integer :: err, e
       if (.not. this%opened) return
-      call h5adelete_f(this%fid, 'status', err)
+      err = 0
+      call h5adelete_f(this%fid, 'status', e)
+      call keep(e, err)
       call attr_string(this%fid, 'status', text, err)
-      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, err)
+      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, e)
+      call keep(e, err)
+      if (err < 0 .and. present(status)) then
+         if (status%ok()) call status%set(STAT_IO, 'HDF5: cannot write the status of the run to '//this%path// &
+                                          ' (is the disk full?)')
+      end if
    end subroutine results_set_status
 
-   subroutine results_close(this)
+   !> Close the file.  When HDF5 cannot (it cannot flush: a full disk), the
+   !! failure is returned in `status` when it is given (and ok so far), and
+   !! the process will end without HDF5's clean-up at exit, which would try
+   !! the same close again and crash inside the library (errors%skip_exit_handlers).
+   subroutine results_close(this, status)
       class(results_file_t), intent(inout) :: this
+      type(status_t), intent(inout), optional :: status
       integer :: err
       if (.not. this%opened) return
       call h5fclose_f(this%fid, err)
       this%opened = .false.
+      if (err < 0) then
+         call skip_exit_handlers()
+         if (present(status)) then
+            if (status%ok()) call status%set(STAT_IO, 'HDF5: cannot close '//this%path//' (is the disk full?)')
+         end if
+      end if
    end subroutine results_close
 
    !> Is the file open (created and not yet closed)?

@@ -74,6 +74,7 @@ contains
       character(len=:), allocatable :: h5, tmp, topo, pairs
       integer :: u, i, np
       character(len=16) :: grp
+      integer :: pos, nbytes, k
 
       h5 = basename(h5_path)
       np = 0
@@ -83,7 +84,8 @@ contains
       if (np > 0) pairs = pair_cells(np)
       ! write to a temporary file, then rename: a reader never sees half a file
       tmp = path//'.tmp'
-      open (newunit=u, file=tmp, status='replace', action='write', iostat=ierr)
+      open (newunit=u, file=tmp, status='replace', action='write', access='stream', form='formatted', &
+            iostat=ierr)
       if (ierr /= 0) return
       write (u, '(a)', iostat=ierr) '<?xml version="1.0" ?>'//nl// &
          '<!DOCTYPE Xdmf SYSTEM "Xdmf.dtd" []>'//nl// &
@@ -109,8 +111,18 @@ contains
          close (u, status='delete')
          return
       end if
+      ! gfortran reports no error when a formatted write or a close meets a full
+      ! disk: the size of the closed file is compared with the position written
+      inquire (unit=u, pos=pos)
       close (u, iostat=ierr)
-      if (ierr /= 0) return
+      nbytes = -1
+      inquire (file=tmp, size=nbytes)
+      if (ierr == 0 .and. nbytes < pos - 1) ierr = -1
+      if (ierr /= 0) then
+         open (newunit=u, file=tmp, status='old', iostat=k)
+         if (k == 0) close (u, status='delete')
+         return
+      end if
       call rename_file(tmp, path, ierr)
    end subroutine write_xdmf
 

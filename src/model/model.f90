@@ -18,12 +18,15 @@ module model
              node_set_t, edge_set_t, find_node_set, find_edge_set
    public :: NTYPE_PLANE_STRESS, NTYPE_PLANE_STRAIN, NTYPE_AXISYMMETRIC, ntype_name
    public :: complete_model, model_complete
-   public :: MAX_NODE
+   public :: MAX_NODE, MAX_CASE
 
    integer, parameter :: NTYPE_PLANE_STRESS = 1
    integer, parameter :: NTYPE_PLANE_STRAIN = 2
    integer, parameter :: NTYPE_AXISYMMETRIC = 3
    integer, parameter :: MAX_NODE = 9   !! largest element (Q9)
+   !> Largest load case number: the factors of every case are stored per increment (and are one
+   !! attribute of each increment in the result file)
+   integer, parameter :: MAX_CASE = 99
 
    !> Isotropic linear-elastic material.
    type :: material_t

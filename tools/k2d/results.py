@@ -19,6 +19,8 @@ names: scripts and tests read results through this module.
     r.last                           # the last kept increment
     r.history("law_drift")           # an increment attribute over r.steps (NaN where absent)
     dataset("x.h5", "/mesh/cells_quad4")   # one dataset by its path (the XDMF sidecar names them)
+    first_nonfinite("x.h5")          # the first dataset or attribute with a NaN or an infinity (None: none)
+    audit("x.h5")                    # status, increments_completed, (group, readable, converged): a run cut short
 
 Per-increment datasets are read when asked for (a result file may hold
 hundreds of increments); the file is opened for each read and closed again,
@@ -169,3 +171,56 @@ def dataset(path, name):
         if name not in f or not isinstance(f[name], h5py.Dataset):
             raise KeyError("%s holds no dataset %s" % (path, name))
         return f[name][()]
+
+
+def first_nonfinite(path):
+    """The first dataset or attribute of the file holding a NaN or an infinity
+    (as "/group/dataset" or "/group@attribute"), None when every number is
+    finite: the fuzzing contract for a run that ended with exit code 0."""
+    bad = []
+
+    def finite(v):
+        arr = np.asarray(v)
+        return arr.dtype.kind != "f" or bool(np.all(np.isfinite(arr)))
+
+    def visit(name, obj):
+        if bad:
+            return
+        if isinstance(obj, h5py.Dataset) and not finite(obj[()]):
+            bad.append("/" + name)
+        for k, v in obj.attrs.items():
+            if not bad and not finite(v):
+                bad.append(f"/{name}@{k}")
+
+    with h5py.File(path, "r") as f:
+        for k, v in f.attrs.items():
+            if not bad and not finite(v):
+                bad.append(f"/@{k}")
+        f.visititems(visit)
+    return bad[0] if bad else None
+
+
+def audit(path):
+    """What a run that ended early (a full disk) left readable, without
+    trusting any of it: (status, increments_completed, groups), each group a
+    tuple (name, readable, converged) -- readable when its four fields
+    (displacement, stress_nodal, stress_gauss, reaction) can be read,
+    converged the attribute or None.  Raises OSError when the file cannot be
+    opened at all."""
+    fields = ("displacement", "stress_nodal", "stress_gauss", "reaction")
+    with h5py.File(str(path), "r") as f:
+        status = str(_text(f.attrs.get("status", "")))
+        completed = int(f.attrs.get("increments_completed", 0))
+        names = sorted(f["increments"].keys()) if "increments" in f else []
+        groups = []
+        for name in names:
+            readable, converged = True, None
+            try:
+                g = f["increments"][name]
+                converged = g.attrs.get("converged")
+                for d in fields:
+                    g[d][()]
+            except Exception:   # noqa: BLE001 -- any failure: the group is not readable
+                readable = False
+            groups.append((name, readable, None if converged is None else int(converged)))
+    return status, completed, groups
