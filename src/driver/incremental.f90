@@ -670,8 +670,8 @@ contains
          else if (.not. status%ok()) then
             call list_failed(out%lu, done, status%message, res%results_path, every)
          end if
-         call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, res%contact%s%ua, &
-                               res%contact%s%pa, .true., out%lu, .true., out%t0, out%rate)
+         if (.not. out%set_up_failed) call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, &
+                                            res%drift, res%contact%s%ua, res%contact%s%pa, .true., out%lu, .true., out%t0, out%rate)
          call close_listing(out%lu, out%lis_path, status)
       end if
       if (status%ok() .and. res%doubts%steps > 0) then
@@ -692,8 +692,9 @@ contains
          res%reported = .true.
          call list_failed(stderr, done, status%message, res%results_path, every)
       end if
-      call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, res%contact%s%ua, &
-                            res%contact%s%pa, .false., out%lu, out%quiet, out%t0, out%rate)
+      if (.not. out%set_up_failed) call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, &
+                                                         res%contact%s%ua, res%contact%s%pa, .false., out%lu, &
+                                                         out%quiet, out%t0, out%rate)
       call out%rf%close(status)
    end subroutine close_outputs
 end module incremental

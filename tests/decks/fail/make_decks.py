@@ -98,12 +98,17 @@ if __name__ == "__main__":
            "closures whose pressure on the law overflows; a numerical failure, the first increment kept."],
           r"increment 2 failed: the interface law overflows at the closures of the step",
           3, "failed at increment 2: the interface law overflows", 1)
-    # set-up: E = 1e308 puts K_AB beyond the range a factorization works in
-    d = pressed_block("Failure at set-up: E = 1e308", "NEWTON", [(1, [0.05]), (19, [1.0])], E=1.0e308)
-    write(d, "fail_setup_overflow",
-          ["A numerical failure before the first increment: E = 1e308 puts the bodies' stiffness out",
-           "of the range of double precision.  The result file keeps the mesh and the status",
-           "\"failed at set-up: ...\"; the message names the stiffness, not the restraints."],
-          r"the set-up failed before the first increment: the bodies' stiffness matrix (is out of the range|holds "
-          r"non-finite)",
-          3, "failed at set-up: the bodies' stiffness matrix", 0)
+    # set-up: a mechanism the input checks cannot see (an element hinged to the base at one
+    # node; every body is restrained against rigid-body motion) makes the bodies' condensed
+    # system singular before the first increment.  (E = 1e308, the earlier trigger, is now an
+    # input error: tests/decks/bad/bad_material_e_huge.)
+    d = pressed_block("Failure at set-up: an element hinged at one node", "NEWTON", [(1, [0.05]), (19, [1.0])])
+    hinge = d.find("B", 10.0, 0.0)
+    d.elements.append((2, [hinge, d.node("C", 11.0, 0.0), d.node("C", 11.0, 1.0), d.node("C", 10.2, 1.0)], "C"))
+    write(d, "fail_setup_mechanism",
+          ["A numerical failure before the first increment: an element joined to the base at one node",
+           "only (a hinge) is a mechanism; the bodies' system, factorized once for the condensation,",
+           "is singular.  The result file keeps the mesh and the status \"failed at set-up: ...\"."],
+          r"the set-up failed before the first increment: condensation: the bodies with reference springs "
+          r"are singular",
+          3, "failed at set-up: condensation: the bodies with reference springs are singular", 0)
