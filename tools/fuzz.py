@@ -12,7 +12,7 @@ mutated inputs (--emit) and runs kontakt2d on each, classifying the outcome
 against the documented contract (docs/fuzzing.md):
 
   exit 2  the messages name file:line, no result file, no runtime trace;
-  exit 0  a result file whose every number is finite;
+  exit 0  a result file whose every number is finite (also exit 4, completed with doubts);
   exit 3  a numerical failure reported, no runtime trace;
   else    a crash (signal, exit 1 internal error, runtime or sanitizer report);
   and no run longer than --timeout seconds (a hang).
@@ -165,13 +165,15 @@ def classify(run_dir, exe, timeout):
         if not errs or any(not LOCATED.match(ln) for ln in errs):
             return 'no_location', err[-600:], dt
         return 'exit2', '', dt
-    if rc == 0:
+    if rc in (0, 4):
+        # 4: completed with doubts (frozen states, law drift, invariant violations): a complete
+        # result file all the same, under the same contract as a success
         if not os.path.exists(res):
             return 'no_result', '', dt
         bad = first_nonfinite(res)
         if bad:
             return 'nonfinite', bad, dt
-        return 'exit0', '', dt
+        return 'exit%d' % rc, '', dt
     if rc == 3:
         return 'exit3', '', dt
     return 'crash', f'exit {rc}', dt
