@@ -35,8 +35,8 @@ module condensed_system
    use kinds, only: dp, i8
    use errors, only: status_t, STAT_SINGULAR
    use strings, only: itoa
-   use contact_system, only: contact_system_t, contact_equations
-   use contact_dense, only: contact_dense_t
+   use contact_system, only: contact_system_t, index_contact_equations
+   use contact_dense, only: contact_dense_t, set_contact_springs
    implicit none
    private
    public :: condensed_system_t
@@ -46,7 +46,7 @@ module condensed_system
       integer, allocatable :: ceq(:)         !! their global equation numbers
       integer, allocatable :: pos(:)         !! (neq) position of an equation in ceq, 0 if none
       integer, allocatable :: ppos(:, :)     !! (nd, npair) position of each pair dof in ceq, 0 if none
-      integer, allocatable :: cdof(:, :)     !! (2, ndof) (dof, node) of the nodal dofs on contact equations
+      integer, allocatable :: cdof(:, :)     !! (3, ndof) (dof, node, position) of the nodal dofs on contact equations
       real(dp), allocatable :: kref(:, :, :) !! (nd, nd, npair) reference springs K_ref
       real(dp), allocatable :: dk(:, :, :)   !! (nd, nd, npair) dK = K_c - K_ref of the current springs
       type(contact_dense_t) :: dense         !! S_B = G^-1, and S_B + dK factorized
@@ -93,7 +93,7 @@ contains
       real(dp), intent(in) :: kref(:, :, :)
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: e(:)
-      integer :: j, k, ip, idof, n, info
+      integer :: j, info
       this%condensed = .true.
       this%kref = kref
       call this%solver%restore_base()
@@ -106,33 +106,9 @@ contains
                           '); check the restraints'
          return
       end if
-      this%ceq = contact_equations(this%peq, this%neq)
+      ! where the contact equations sit (solve answers at the nodal dofs of cdof)
+      call index_contact_equations(this%peq, this%neq, this%id, this%ceq, this%pos, this%ppos, this%cdof)
       this%nc = size(this%ceq)
-      allocate (this%pos(this%neq))
-      this%pos = 0
-      do k = 1, this%nc
-         this%pos(this%ceq(k)) = k
-      end do
-      allocate (this%ppos(size(this%peq, 1), size(this%peq, 2)))
-      this%ppos = 0
-      do j = 1, size(this%peq, 2)
-         do k = 1, size(this%peq, 1)
-            if (this%peq(k, j) > 0) this%ppos(k, j) = this%pos(this%peq(k, j))
-         end do
-      end do
-      ! the nodal dofs whose equation is a contact equation (where solve answers)
-      n = count(this%id > 0 .and. this%id <= this%neq)
-      allocate (this%cdof(2, n))
-      n = 0
-      do ip = 1, size(this%id, 2)
-         do idof = 1, 2
-            if (this%id(idof, ip) <= 0) cycle
-            if (this%pos(this%id(idof, ip)) == 0) cycle
-            n = n + 1
-            this%cdof(:, n) = [idof, ip]
-         end do
-      end do
-      this%cdof = this%cdof(:, 1:n)
       call this%dense%init(this%nc, size(this%peq, 1), size(this%peq, 2))
       allocate (e(this%neq))
       do j = 1, this%nc
@@ -168,15 +144,8 @@ contains
       class(condensed_system_t), intent(inout) :: this
       real(dp), intent(in) :: kc(:, :, :)
       type(status_t), intent(inout) :: status
-      this%bad_eq = 0
-      this%dk = kc - this%kref
-      call this%dense%set_springs(this%ppos, this%dk, status)
-      if (.not. status%ok()) return
-      if (this%dense%bad > 0) then
-         this%bad_eq = this%ceq(this%dense%bad)
-         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%bad_eq)// &
-                         ' of the condensed contact system')
-      end if
+      call set_contact_springs(this%dense, this%ppos, this%ceq, kc, this%kref, this%dk, 'the condensed contact system', &
+                               this%bad_eq, status)
    end subroutine condensed_set_springs
 
    !> A new attempt: the deferred correction starts from zero.
@@ -225,7 +194,7 @@ contains
          end do
       end do
       do k = 1, size(this%cdof, 2)
-         du(this%cdof(1, k), this%cdof(2, k)) = this%xc(this%pos(this%id(this%cdof(1, k), this%cdof(2, k))))
+         du(this%cdof(1, k), this%cdof(2, k)) = this%xc(this%cdof(3, k))
       end do
    end subroutine condensed_solve
 

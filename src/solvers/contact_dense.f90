@@ -61,7 +61,7 @@ module contact_dense
    use contact_projection, only: contact_projection_t
    implicit none
    private
-   public :: contact_dense_t, PIVOT_TOL
+   public :: contact_dense_t, PIVOT_TOL, set_contact_springs
 
    !> Relative pivot threshold of a singular system (the skyline solver's).
    real(dp), parameter :: PIVOT_TOL = 1.0e-12_dp
@@ -543,4 +543,26 @@ contains
       if (allocated(this%kcur)) bytes = bytes + 8_i8*size(this%kcur, kind=i8) + 16_i8*n
       bytes = bytes + this%proj%memory_bytes()
    end function dense_memory
+   !> The springs of the current modes into a condensed contact system: dk =
+   !! kc - kref, added to S and factorized; a singular pivot is reported with
+   !! its global equation (ceq) in bad_eq and STAT_SINGULAR naming `what`.
+   subroutine set_contact_springs(dense, ppos, ceq, kc, kref, dk, what, bad_eq, status)
+      type(contact_dense_t), intent(inout) :: dense
+      integer, intent(in) :: ppos(:, :)             !! (nd, npair) position of each pair dof in ceq
+      integer, intent(in) :: ceq(:)                 !! global equations of the contact equations
+      real(dp), intent(in) :: kc(:, :, :)           !! (nd, nd, npair) spring matrices
+      real(dp), intent(in) :: kref(:, :, :)         !! (nd, nd, npair) reference springs in S
+      real(dp), intent(inout) :: dk(:, :, :)        !! (nd, nd, npair) kc - kref, kept
+      character(len=*), intent(in) :: what          !! the system, for the message
+      integer, intent(out) :: bad_eq                !! equation of a singular pivot, 0 if none
+      type(status_t), intent(inout) :: status
+      bad_eq = 0
+      dk = kc - kref
+      call dense%set_springs(ppos, dk, status)
+      if (.not. status%ok()) return
+      if (dense%bad > 0) then
+         bad_eq = ceq(dense%bad)
+         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(bad_eq)//' of '//what)
+      end if
+   end subroutine set_contact_springs
 end module contact_dense

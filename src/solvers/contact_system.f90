@@ -60,7 +60,7 @@ module contact_system
    use dof_map, only: dof_map_t
    implicit none
    private
-   public :: contact_system_t, contact_equations
+   public :: contact_system_t, contact_equations, index_contact_equations
 
    type, abstract :: contact_system_t
       class(linear_solver_t), allocatable :: solver   !! the bodies' solver (K_AB its base), owned after setup
@@ -190,4 +190,46 @@ contains
       end do
       c = pack([(k, k=1, neq)], mark)
    end function contact_equations
+   !> Where the contact equations sit, for the systems that condense onto
+   !! them: ceq the distinct free equations of the pairs (sorted), pos (neq)
+   !! the position of an equation in ceq (0 if none), ppos (nd, npair) the
+   !! position of each pair dof (0 if none), cdof (3, n) (dof, node, position)
+   !! of the nodal dofs whose equation is a contact equation.
+   pure subroutine index_contact_equations(peq, neq, id, ceq, pos, ppos, cdof)
+      integer, intent(in) :: peq(:, :)            !! (nd, npair)
+      integer, intent(in) :: neq
+      integer, intent(in) :: id(:, :)             !! (2, npoin) equation of each nodal dof
+      integer, allocatable, intent(out) :: ceq(:), pos(:), ppos(:, :), cdof(:, :)
+      integer :: j, k, ip, idof, n
+      ceq = contact_equations(peq, neq)
+      allocate (pos(neq), ppos(size(peq, 1), size(peq, 2)))
+      pos = 0
+      do k = 1, size(ceq)
+         pos(ceq(k)) = k
+      end do
+      ppos = 0
+      do j = 1, size(peq, 2)
+         do k = 1, size(peq, 1)
+            if (peq(k, j) > 0) ppos(k, j) = pos(peq(k, j))
+         end do
+      end do
+      n = 0
+      do ip = 1, size(id, 2)
+         do idof = 1, 2
+            if (id(idof, ip) > 0) then
+               if (pos(id(idof, ip)) > 0) n = n + 1
+            end if
+         end do
+      end do
+      allocate (cdof(3, n))
+      n = 0
+      do ip = 1, size(id, 2)
+         do idof = 1, 2
+            if (id(idof, ip) <= 0) cycle
+            if (pos(id(idof, ip)) == 0) cycle
+            n = n + 1
+            cdof(:, n) = [idof, ip, pos(id(idof, ip))]
+         end do
+      end do
+   end subroutine index_contact_equations
 end module contact_system

@@ -43,8 +43,8 @@ module mumps_schur_system
    use kinds, only: dp, i8
    use errors, only: status_t, STAT_SOLVER, STAT_SINGULAR
    use strings, only: itoa
-   use contact_system, only: contact_system_t, contact_equations
-   use contact_dense, only: contact_dense_t
+   use contact_system, only: contact_system_t, index_contact_equations
+   use contact_dense, only: contact_dense_t, set_contact_springs
    use mumps_solver, only: mumps_solver_t
    implicit none
    private
@@ -86,40 +86,17 @@ contains
       class(mumps_schur_system_t), intent(inout) :: this
       real(dp), intent(in) :: kref(:, :, :)
       type(status_t), intent(inout) :: status
-      integer :: j, k, ip, idof, n
+      integer :: j
       this%condensed = .true.
       this%kref = kref
       allocate (this%dk, mold=kref)
-      this%ceq = contact_equations(this%peq, this%neq)
+      call index_contact_equations(this%peq, this%neq, this%id, this%ceq, this%pos, this%ppos, this%cdof)
       this%nc = size(this%ceq)
       if (this%nc < 1 .or. this%nc >= this%neq) then
          call status%set(STAT_SOLVER, 'Schur contact system: needs between 1 and neq-1 contact equations, has '// &
                          itoa(this%nc)//' of '//itoa(this%neq))
          return
       end if
-      allocate (this%pos(this%neq), this%ppos(size(this%peq, 1), size(this%peq, 2)))
-      this%pos = 0
-      do k = 1, this%nc
-         this%pos(this%ceq(k)) = k
-      end do
-      this%ppos = 0
-      do j = 1, size(this%peq, 2)
-         do k = 1, size(this%peq, 1)
-            if (this%peq(k, j) > 0) this%ppos(k, j) = this%pos(this%peq(k, j))
-         end do
-      end do
-      n = 0
-      allocate (this%cdof(3, this%nc))
-      do ip = 1, size(this%id, 2)
-         do idof = 1, 2
-            if (this%id(idof, ip) <= 0) cycle
-            if (this%pos(this%id(idof, ip)) == 0) cycle
-            n = n + 1
-            if (n > size(this%cdof, 2)) this%cdof = reshape(this%cdof, [3, 2*n], pad=[0])
-            this%cdof(:, n) = [idof, ip, this%pos(this%id(idof, ip))]
-         end do
-      end do
-      this%cdof = this%cdof(:, 1:n)
       call this%dense%init(this%nc, size(this%peq, 1), size(this%peq, 2))
       select type (s => this%solver)
       type is (mumps_solver_t)
@@ -150,15 +127,8 @@ contains
       class(mumps_schur_system_t), intent(inout) :: this
       real(dp), intent(in) :: kc(:, :, :)
       type(status_t), intent(inout) :: status
-      this%bad_eq = 0
-      this%dk = kc - this%kref
-      call this%dense%set_springs(this%ppos, this%dk, status)
-      if (.not. status%ok()) return
-      if (this%dense%bad > 0) then
-         this%bad_eq = this%ceq(this%dense%bad)
-         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(this%bad_eq)// &
-                         ' of the Schur complement')
-      end if
+      call set_contact_springs(this%dense, this%ppos, this%ceq, kc, this%kref, this%dk, 'the Schur complement', &
+                               this%bad_eq, status)
    end subroutine schur_set_springs
 
    subroutine schur_begin_attempt(this)
