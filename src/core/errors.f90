@@ -14,6 +14,7 @@ module errors
    private
 
    public :: input_error_t, error_list_t, status_t, assert, fatal_internal, terminate, skip_exit_handlers
+   public :: printable
    public :: STAT_OK, STAT_SINGULAR, STAT_NEGATIVE_PIVOT, STAT_JACOBIAN, &
              STAT_NO_CONVERGENCE, STAT_CHATTER, STAT_SOLVER, STAT_IO, STAT_INPUT, &
              EXIT_OK, EXIT_INTERNAL, EXIT_INPUT, EXIT_NUMERICAL

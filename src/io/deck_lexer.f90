@@ -11,7 +11,7 @@ module deck_lexer
    use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
                                             ieee_set_flag
    use kinds, only: dp
-   use errors, only: error_list_t
+   use errors, only: error_list_t, printable
    use strings, only: upper, itoa, rtoa
    implicit none
    private
@@ -240,19 +240,10 @@ contains
       character(len=*), intent(in) :: s
       integer, intent(in), optional :: limit
       character(len=:), allocatable :: r
-      integer :: i, n, lim
+      integer :: lim
       lim = 60
       if (present(limit)) lim = limit
-      n = min(len(s), max(lim, 0))
-      allocate (character(len=n) :: r)
-      do i = 1, n
-         if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) > 126) then
-            r(i:i) = '?'
-         else
-            r(i:i) = s(i:i)
-         end if
-      end do
-      if (len(s) > n) r = r//'...'
+      r = printable(s, max(lim, 0))
    end function shown
 
    pure logical function deck_at_end(this)
