@@ -47,7 +47,8 @@ def corpus_entries():
     entries = []
     for top in ('inputs', 'tests'):
         for d, _, files in sorted(os.walk(os.path.join(ROOT, top))):
-            if 'pfunit_fallback' in d or os.sep + 'fuzz' in d:
+            rel = os.path.relpath(d, ROOT).split(os.sep)
+            if 'pfunit_fallback' in rel or 'fuzz' in rel:
                 continue
             for f in sorted(files):
                 if not f.endswith('.dat') or f.endswith('_fine.dat'):
