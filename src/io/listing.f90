@@ -23,7 +23,7 @@ module listing
    public :: list_header, list_method, list_input, list_step, list_displacements, list_stresses, &
              principal_stresses, list_contact, list_progress_header, list_progress
    public :: list_completed, list_failed, list_sliding_warning, list_doubts, list_interfaces
-   public :: close_listing
+   public :: close_listing, check_listing
 
 contains
 
@@ -43,9 +43,35 @@ contains
       nbytes = -1
       inquire (file=path, size=nbytes)
       if (.not. status%ok()) return
-      if (ios /= 0 .or. ios2 /= 0 .or. nbytes < pos - 1) call status%set(STAT_IO, 'cannot write the listing '// &
-          path//': '//itoa(max(nbytes, 0))//' of '//itoa(pos - 1)//' bytes reached the disk (is it full?)')
+      if (ios /= 0 .or. ios2 /= 0 .or. nbytes < pos - 1) call status%set(STAT_IO, shortfall(path, nbytes, pos - 1))
    end subroutine close_listing
+
+   !> Has all of the listing written so far reached the disk?  Flushed, then
+   !! checked as at its close (close_listing), after every increment that
+   !! wrote to it, so that a full disk ends the run at the increment it
+   !! stopped the listing; a shortfall is returned in `status`.
+   subroutine check_listing(u, path, status)
+      integer, intent(in) :: u                    !! the listing's unit (stream access)
+      character(len=*), intent(in) :: path        !! its file
+      type(status_t), intent(inout) :: status
+      integer :: pos, ios, ios2, nbytes
+      if (.not. status%ok()) return
+      flush (u, iostat=ios2)
+      pos = 1
+      inquire (unit=u, pos=pos, iostat=ios)
+      nbytes = -1
+      inquire (file=path, size=nbytes)
+      if (ios /= 0 .or. ios2 /= 0 .or. nbytes < pos - 1) call status%set(STAT_IO, shortfall(path, nbytes, pos - 1))
+   end subroutine check_listing
+
+   !> The message of a listing that did not reach the disk whole.
+   pure function shortfall(path, nbytes, written) result(msg)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: nbytes, written
+      character(len=:), allocatable :: msg
+      msg = 'cannot write the listing '//path//': '//itoa(max(nbytes, 0))//' of '//itoa(written)// &
+            ' bytes reached the disk (is it full?)'
+   end function shortfall
 
    !> Program banner and the control data.
    subroutine list_header(u, m, info)

@@ -40,10 +40,30 @@
 !! The file is flushed after every increment, so a run that stops early
 !! leaves every finished increment readable.  Every HDF5 return code is
 !! checked; a failure is returned as a status, never ignored.
+!!
+!! A full disk.  HDF5 (1.10) does not recover from a failed write: once a
+!! flush has failed, no later flush, unlink or close succeeds, and what
+!! reached the disk is a file whose groups point past its end.  So the disk
+!! is never allowed to fill under HDF5:
+!!  - `create` holds a reserve file beside the result file (`NAME.reserve`,
+!!    RESERVE_BYTES allocated on the disk, module disk_reserve); at the end of the
+!!    run (`set_status`, `close`) it is deleted, which gives the last status,
+!!    flush and close their room whatever the listing took meanwhile;
+!!  - before the mesh, the contact definition and every increment group,
+!!    `probe_room` allocates the bytes the group will take (its arrays plus a
+!!    margin for HDF5's metadata) in the reserve file and then cuts the
+!!    reserve back to its size: when the disk cannot hold them, nothing of
+!!    the group is written, the reserve is released and the run ends with
+!!    exit 3 and a readable file whose status names the increment that found
+!!    no room.
+!! Another process that fills the disk between the probe and the write can
+!! still break the file: the probe is a check, not an allocation.  A disk
+!! without room for the reserve ends the run before the first increment, with
+!! no result file.
 module results_hdf5
    use, intrinsic :: iso_c_binding, only: c_double
    use hdf5
-   use kinds, only: dp
+   use kinds, only: dp, i8
    use errors, only: status_t, STAT_IO, skip_exit_handlers
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
@@ -51,6 +71,7 @@ module results_hdf5
    use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, law_name, &
                             matching_name, rigid_shape_name, MAX_PAIR_NODES
    use version, only: K2D_VERSION
+   use disk_reserve, only: reserve_t
    use xdmf_writer, only: write_xdmf, xdmf_path, CELL_NNODE, XDMF_CELL_CODE
    implicit none
    private
@@ -72,6 +93,8 @@ module results_hdf5
       real(dp), allocatable :: lambda(:, :)    !! (ncase, ncompleted) their load factors
       real(dp), allocatable :: lambda_open(:)  !! load factors of the increment being written
       integer :: inc_open = 0
+      type(reserve_t) :: reserve                    !! room for closing the file after a failure
+      logical :: discard = .false.                  !! delete the file at close (no room for the reserve)
    contains
       procedure :: create => results_create
       procedure :: write_run_info => results_run_info
@@ -84,6 +107,13 @@ module results_hdf5
    end type results_file_t
 
    logical, save :: library_open = .false.
+
+   !> Size of the reserve file: room for what is written after a failure (the
+   !! status, HDF5's last flush and close, the listing's closing lines).
+   integer(i8), parameter :: RESERVE_BYTES = 1048576_i8
+   !> Margin of a probe over the arrays of a group: object headers (about
+   !! 1 kB a dataset), attributes, the growth of /increments' symbol table.
+   integer(i8), parameter :: PROBE_MARGIN = 262144_i8
 
 contains
 
@@ -111,12 +141,29 @@ contains
          call h5open_f(err)
          if (fail(err, 'initialise the HDF5 library')) return
          ! errors are reported by this module, not by HDF5's own error stack printer
-         call h5eset_auto_f(0, err)
+         call h5eset_auto_f(1, err)
          library_open = .true.
       end if
       call h5fcreate_f(path, H5F_ACC_TRUNC_F, this%fid, err)
-      if (fail(err, 'create the result file')) return
+      if (e_fail(err, 'create the result file')) return
       this%opened = .true.
+      this%discard = .false.
+      call make_reserve(this, err)
+      if (err /= 0) then
+         ! no room even for the reserve: nothing of the run can be kept
+         this%discard = .true.
+         call status%set(STAT_IO, 'no room on the disk for '//path//'.reserve ('//itoa(int(RESERVE_BYTES))// &
+                         ' bytes kept for closing the result file after a failure): is the disk full?')
+         return
+      end if
+      ! the mesh (coordinates, cells in three layouts, Gauss points)
+      call probe_room(this, 8_i8*size(m%coord, kind=i8) + 4_i8*(2*MAX_NODE + 4)*m%nelem + 28_i8*size(body%xygp, 2) &
+                      + 4_i8*m%npoin, err)
+      if (err /= 0) then
+         call status%set(STAT_IO, 'no room on the disk for the mesh in '//path//' (is the disk full?)')
+         call results_set_status(this, 'failed at set-up: '//status%message)
+         return
+      end if
       call attr_string(this%fid, 'program', 'Kontakt2D', err)
       call attr_string(this%fid, 'version', K2D_VERSION, err)
       call attr_string(this%fid, 'title', m%title, err)
@@ -157,14 +204,48 @@ contains
       if (fail(err, 'flush the result file')) return
       allocate (this%incs(0), this%lambda(m%ncase, 0))
       call update_xdmf(this, status)
+      if (.not. status%ok()) call results_set_status(this, 'failed at set-up: '//status%message)
    contains
+      !> A failure of the library or of the file's creation (nothing written).
+      logical function e_fail(e, what)
+         integer, intent(in) :: e
+         character(len=*), intent(in) :: what
+         e_fail = e < 0
+         if (e_fail) call status%set(STAT_IO, 'HDF5: cannot '//what//' ('//path//')')
+      end function e_fail
+      !> A failed write to the created file: the file says so, if it can.
       logical function fail(e, what)
          integer, intent(in) :: e
          character(len=*), intent(in) :: what
          fail = e < 0
-         if (fail) call status%set(STAT_IO, 'HDF5: cannot '//what//' ('//path//')')
+         if (fail) then
+            call status%set(STAT_IO, 'HDF5: cannot '//what//' ('//path//')')
+            call results_set_status(this, 'failed at set-up: '//status%message)
+         end if
       end function fail
    end subroutine results_create
+
+   !> Hold the reserve file (see the module's notes); err = 0 when held.
+   subroutine make_reserve(this, err)
+      class(results_file_t), intent(inout) :: this
+      integer, intent(out) :: err
+      call this%reserve%hold(this%path//'.reserve', RESERVE_BYTES, err)
+   end subroutine make_reserve
+
+   !> Is there room on the disk for `nbytes` more (plus PROBE_MARGIN)?  err /= 0
+   !! when there is not; the reserve is then released (disk_reserve).
+   subroutine probe_room(this, nbytes, err)
+      class(results_file_t), intent(inout) :: this
+      integer(i8), intent(in) :: nbytes
+      integer, intent(out) :: err
+      call this%reserve%probe(nbytes + PROBE_MARGIN, err)
+   end subroutine probe_room
+
+   !> Delete the reserve file, if it is held.
+   subroutine release_reserve(this)
+      class(results_file_t), intent(inout) :: this
+      call this%reserve%release()
+   end subroutine release_reserve
 
    !> Group /increments/NNNNN of an accepted step: the step record's figures
    !! as attributes, the body fields and, for a contact model, the contact
@@ -178,7 +259,17 @@ contains
       integer(hid_t) :: gid
       integer :: err
       real(dp), allocatable :: u3(:, :)              !! the displacements with a zero third component
+      integer(i8) :: nbytes
 
+      ! the body fields (displacement twice, stresses, reactions) and the contact fields
+      nbytes = 8_i8*(size(body%disp, kind=i8)*5/2 + size(body%sig_nd, kind=i8) + size(body%sig_gp, kind=i8) &
+                     + size(body%react, kind=i8)) + 512_i8*this%npair
+      call probe_room(this, nbytes, err)
+      if (err /= 0) then
+         call status%set(STAT_IO, 'no room on the disk for the results of increment '//itoa(step%step)// &
+                         ' (about '//itoa(int(nbytes/1024))//' kB) in '//this%path//': is the disk full?')
+         return
+      end if
       call open_increment(this, step, gid, status)
       if (.not. status%ok()) return
       err = 0
@@ -369,6 +460,8 @@ contains
       type(status_t), intent(inout), optional :: status
       integer :: err, e
       if (.not. this%opened) return
+      ! the end of the run: the reserve gives the status its room
+      call release_reserve(this)
       err = 0
       call h5adelete_f(this%fid, 'status', e)
       call keep(e, err)
@@ -388,10 +481,18 @@ contains
    subroutine results_close(this, status)
       class(results_file_t), intent(inout) :: this
       type(status_t), intent(inout), optional :: status
-      integer :: err
+      integer :: err, u, e
       if (.not. this%opened) return
+      call release_reserve(this)
       call h5fclose_f(this%fid, err)
       this%opened = .false.
+      if (this%discard) then
+         ! not even the reserve could be written: no result file
+         open (newunit=u, file=this%path, status='old', iostat=e)
+         if (e == 0) close (u, status='delete', iostat=e)
+         if (err < 0) call skip_exit_handlers()
+         return
+      end if
       if (err < 0) then
          call skip_exit_handlers()
          if (present(status)) then
@@ -445,6 +546,13 @@ contains
       err = 0
       np = size(c%pairs)
       this%npair = np
+      call probe_room(this, 256_i8*np + 1024_i8*size(c%ifaces), e)
+      if (e /= 0) then
+         call status%set(STAT_IO, 'no room on the disk for the contact definition in '//this%path// &
+                         ' (is the disk full?)')
+         call results_set_status(this, 'failed at set-up: '//status%message)
+         return
+      end if
       call h5gcreate_f(this%fid, 'contact', gid, e)
       if (e < 0) then
          call status%set(STAT_IO, 'HDF5: cannot create group /contact in '//this%path)
