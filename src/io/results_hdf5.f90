@@ -89,8 +89,9 @@ module results_hdf5
       integer :: ncells(4) = 0                 !! elements of each kind: T3, Q4, Q8, Q9
       integer :: nmixed = 0                    !! length of /mesh/cells_mixed (mixed meshes)
       integer :: npair = 0                     !! contact pairs (the sidecar's contact grid)
-      integer, allocatable :: incs(:)          !! finished increments
-      real(dp), allocatable :: lambda(:, :)    !! (ncase, ncompleted) their load factors
+      integer, allocatable :: incs(:)          !! finished increments (1:ncompleted; grown by doubling)
+      real(dp), allocatable :: lambda(:, :)    !! (ncase, 1:ncompleted) their load factors
+      integer :: xdmf_done = 0                 !! finished increments the XDMF file names
       real(dp), allocatable :: lambda_open(:)  !! load factors of the increment being written
       integer :: inc_open = 0
       type(reserve_t) :: reserve                    !! room for closing the file after a failure
@@ -114,6 +115,9 @@ module results_hdf5
    !> Margin of a probe over the arrays of a group: object headers (about
    !! 1 kB a dataset), attributes, the growth of /increments' symbol table.
    integer(i8), parameter :: PROBE_MARGIN = 262144_i8
+   !> The XDMF file is rewritten after every one of the first increments, then
+   !! less often (see close_increment).
+   integer, parameter :: XDMF_EVERY_UNTIL = 64
 
 contains
 
@@ -134,6 +138,7 @@ contains
       if (allocated(this%incs)) deallocate (this%incs)
       if (allocated(this%lambda)) deallocate (this%lambda)
       this%ncompleted = 0
+      this%xdmf_done = 0
       this%nmixed = 0
       this%ncells = 0
       this%path = path
@@ -380,15 +385,24 @@ contains
          return
       end if
       if (allocated(this%incs)) then
-         this%incs = [this%incs, this%inc_open]
-         block
-            real(dp), allocatable :: t(:, :)
-            allocate (t(size(this%lambda, 1), this%ncompleted))
-            t(:, 1:this%ncompleted - 1) = this%lambda(:, 1:this%ncompleted - 1)
-            t(:, this%ncompleted) = this%lambda_open(1:size(t, 1))
-            call move_alloc(t, this%lambda)
-         end block
-         call update_xdmf(this, status)
+         if (this%ncompleted > size(this%incs)) then
+            block
+               integer, allocatable :: ti(:)
+               real(dp), allocatable :: t(:, :)
+               allocate (ti(2*size(this%incs) + 16), t(size(this%lambda, 1), 2*size(this%incs) + 16))
+               ti(1:this%ncompleted - 1) = this%incs(1:this%ncompleted - 1)
+               t(:, 1:this%ncompleted - 1) = this%lambda(:, 1:this%ncompleted - 1)
+               call move_alloc(ti, this%incs)
+               call move_alloc(t, this%lambda)
+            end block
+         end if
+         this%incs(this%ncompleted) = this%inc_open
+         this%lambda(:, this%ncompleted) = this%lambda_open(1:size(this%lambda, 1))
+         ! the XDMF file is rewritten whole: after each of the first XDMF_EVERY_UNTIL
+         ! increments, then when the count has grown by an eighth (linear time in
+         ! all), and at the end of the run (set_status)
+         if (this%ncompleted <= XDMF_EVERY_UNTIL .or. this%ncompleted - this%xdmf_done >= this%xdmf_done/8) &
+            call update_xdmf(this, status)
       end if
    end subroutine close_increment
 
@@ -446,10 +460,13 @@ contains
       class(results_file_t), intent(inout) :: this
       type(status_t), intent(inout) :: status
       integer :: ierr
-      call write_xdmf(xdmf_path(this%path), this%path, this%npoin, this%ncells, this%nmixed, this%incs, &
-                      this%lambda, ierr, this%npair)
-      if (ierr /= 0) call status%set(STAT_IO, 'cannot write the XDMF file '//xdmf_path(this%path)// &
-                                     ' (error '//itoa(ierr)//')')
+      call write_xdmf(xdmf_path(this%path), this%path, this%npoin, this%ncells, this%nmixed, &
+                      this%incs(1:this%ncompleted), this%lambda(:, 1:this%ncompleted), ierr, this%npair)
+      if (ierr /= 0) then
+         call status%set(STAT_IO, 'cannot write the XDMF file '//xdmf_path(this%path)//' (error '//itoa(ierr)//')')
+      else
+         this%xdmf_done = this%ncompleted
+      end if
    end subroutine update_xdmf
 
    !> Replace the root attribute `status` (running, completed, failed: ...).
@@ -462,6 +479,17 @@ contains
       if (.not. this%opened) return
       ! the end of the run: the reserve gives the status its room
       call release_reserve(this)
+      ! the XDMF file names every finished increment
+      if (allocated(this%incs) .and. this%xdmf_done < this%ncompleted) then
+         if (present(status)) then
+            call update_xdmf(this, status)
+         else
+            block
+               type(status_t) :: ignored
+               call update_xdmf(this, ignored)
+            end block
+         end if
+      end if
       err = 0
       call h5adelete_f(this%fid, 'status', e)
       call keep(e, err)

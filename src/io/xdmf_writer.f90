@@ -18,8 +18,9 @@
 !! Every grid carries the load factors of its increment as a grid-centred
 !! attribute `load_factor` (one tuple, one component per load case; ParaView
 !! shows it as field data).  The time of increment i is i (load factors need not
-!! increase).  The file is rewritten after every increment, so it only ever
-!! names datasets that exist.
+!! increase).  The file is rewritten whole by results_hdf5 as increments
+!! finish (not after every one in a long run: see close_increment there), so
+!! it only ever names datasets that exist.
 !!
 !! Ref: XDMF model and format, version 2 (xdmf.org, "XDMF Model and Format").
 module xdmf_writer

@@ -7,7 +7,8 @@ A file that exists must open and must count as increments_completed exactly
 the increment groups that are complete and readable (every field of
 results-format.md), and no group that is not must be marked converged.  With
 --failed, or --exit 3, the status must say that the run failed and where: at
-set-up, or at an increment after the last completed one.  With --exit 3 a
+set-up, or at an increment after the last completed one (or at the last
+completed one when what failed was its listing or XDMF file).  With --exit 3 a
 missing file passes (the disk had no room even for the run's reserve: the
 caller checks the message); without it a missing file fails.  No reserve file
 (RESULT.h5.reserve) may be left.  Exit 0 when that holds, 1 otherwise.
@@ -50,10 +51,13 @@ def main():
     if failed:
         m = re.match(r"failed at (set-up|increment (\d+)): \S", status)
         last = max((int(name) for name, good, _ in groups if good), default=0)
+        # the listing and the XDMF file are written after the increment's group:
+        # when they fail, the group of the increment named is complete
+        side_file = re.search(r"cannot write the (listing|XDMF)", status) is not None
         if not m:
             print(f"{path}: status {status!r} does not say where the run failed")
             ok = False
-        elif m.group(2) is not None and int(m.group(2)) <= last:
+        elif m.group(2) is not None and int(m.group(2)) < last + (0 if side_file else 1):
             print(f"{path}: status {status!r} names an increment not after the last complete one ({last})")
             ok = False
         elif m.group(1) == "set-up" and groups:
