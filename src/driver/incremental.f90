@@ -33,12 +33,12 @@
 module incremental
    use kinds, only: dp, i8, stdout, stderr
    use errors, only: status_t, STAT_INPUT, STAT_NO_CONVERGENCE
-   use strings, only: itoa, rtoa, strip_extension, basename
+   use strings, only: itoa, rtoa, strip_extension, basename, upper
    use model, only: model_t, NTYPE_AXISYMMETRIC, complete_model, model_complete
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, STEP_CONVERGED, &
                       STEP_UNSETTLED
    use equation_numbering, only: numbering_report_t, number_equations, write_numbering_report
-   use solver_factory, only: create_solver
+   use solver_factory, only: create_solver, choose_solver
    use contact_system, only: contact_equations
    use contact_system_factory, only: create_contact_system
    use assembly, only: assemble_bodies, assemble_load_cases, load_increment
@@ -128,13 +128,16 @@ contains
       type(outputs_t) :: out
       type(numbering_report_t) :: numbering
       type(status_t) :: ostat
-      character(len=:), allocatable :: solver_name
+      character(len=:), allocatable :: solver_name, auto_reason
 
       call system_clock(out%t0, out%rate)
       solver_name = m%solver_name
       if (allocated(opts%solver_name)) then
          if (len(opts%solver_name) > 0) solver_name = opts%solver_name
       end if
+      ! no SOLVER in the deck (or AUTO) and no -s: from the model's size and contact
+      if (upper(trim(adjustl(solver_name))) == 'AUTO') &
+         call choose_solver(2*m%npoin, size(m%contact%pairs) > 0, solver_name, auto_reason)
       res%results_path = strip_extension(basename(m%deck_file))//'.h5'
       if (allocated(opts%results_path)) then
          if (len(opts%results_path) > 0) res%results_path = opts%results_path
@@ -147,6 +150,7 @@ contains
       out%quiet = opts%quiet
 
       call set_up(m, solver_name, an, numbering, status)
+      if (allocated(auto_reason)) numbering%solver_choice = solver_name//', chosen automatically ('//auto_reason//')'
       if (status%ok()) call start_run(m, an, res, status)
       if (status%ok()) then
          call open_outputs(m, numbering, res, out, status)
