@@ -29,6 +29,7 @@ module equation_numbering
       integer(i8) :: profile_after = 0             !! skyline length in the order used
       real(dp) :: mean_after = 0.0_dp
       integer :: max_after = 0
+      character(len=:), allocatable :: solver_choice   !! the automatic choice of the solver and why ('' none)
    end type numbering_report_t
 
 contains
@@ -102,10 +103,13 @@ contains
       call graph_profile(map%neq, xadj, adjncy, rep%profile_after, rep%mean_after, rep%max_after, status)
    end subroutine number_equations
 
-   !> Two lines for the listing header and the terminal.
+   !> Two or three lines for the listing header and the terminal.
    subroutine write_numbering_report(u, rep)
       integer, intent(in) :: u
       type(numbering_report_t), intent(in) :: rep
+      if (allocated(rep%solver_choice)) then
+         if (len(rep%solver_choice) > 0) write (u, '(a)') ' Solver choice: '//rep%solver_choice
+      end if
       write (u, '(a)') ' Renumbering  : '//rep%method//' ('//rep%reason//')'
       write (u, '(a)') ' Profile      : user order '//profile_text(rep%profile_before, rep%mean_before, rep%max_before)
       if (rep%method /= RENUMBER_NONE) &

@@ -1,16 +1,49 @@
-!> What one attempt at an increment leaves (nothing committed yet), and the
-!! message of an attempt that did not converge: it names the criterion that
-!! failed with its value and tolerance, and advises only what is not already
-!! in use.
+!> What the increment loop works with (analysis_t), what one attempt at an
+!! increment leaves (nothing committed yet), and the messages of an attempt
+!! that failed: one that did not converge names the criterion that failed
+!! with its value and tolerance, and advises only what is not already in use;
+!! a singular system names the node and dof.
 module increment_attempt
    use kinds, only: dp
-   use errors, only: status_t, STAT_NO_CONVERGENCE
+   use errors, only: status_t, STAT_NO_CONVERGENCE, STAT_SINGULAR
    use strings, only: itoa, rtoa
+   use dof_map, only: dof_map_t
+   use linear_solver, only: linear_solver_t
+   use contact_system, only: contact_system_t
+   use assembly, only: coupling_t
+   use contact_assembly, only: contact_springs_t
    use contact_types, only: contact_options_t
    use contact_algorithm, only: contact_state_t
    implicit none
    private
-   public :: attempt_t, attempt_failure
+   public :: analysis_t, attempt_t, attempt_failure, describe_singular
+
+   !> Everything the increment loop works with.
+   type :: analysis_t
+      type(dof_map_t) :: map
+      class(linear_solver_t), allocatable :: solver  !! the bodies' solver, until the contact system takes it
+      class(contact_system_t), allocatable :: sys    !! the system the increments solve
+      type(contact_springs_t) :: springs             !! equations and matrices of the pairs' springs
+      type(coupling_t) :: coup
+      real(dp), allocatable :: fcase(:, :, :)      !! (2, npoin, ncase) forces at factor 1
+      real(dp), allocatable :: ucase(:, :, :)      !! (2, npoin, ncase) prescribed displacements at factor 1
+      real(dp), allocatable :: diag(:)             !! (neq) diagonal of K_AB
+      logical, allocatable :: restrained(:, :)     !! (2, npoin)
+      integer :: npair = 0
+      integer :: maxrep = 30                       !! cap on solutions of one increment
+      logical :: has_contact = .false.
+      logical :: returning = .false.               !! RETURN update (Newton)
+      logical :: modified = .false.                !! modified Newton: stiffness kept within an increment
+      logical :: system_current = .false.          !! the system holds the springs of the current modes
+      logical :: pending = .false.                 !! the recovery of the full field of steps is postponed
+      real(dp), allocatable :: kref(:, :, :)       !! (nd, nd, npair) reference springs (contact_system)
+      real(dp), allocatable :: spacing(:)          !! (npair) distance to the nearest other pair
+      integer, allocatable :: body(:, :)           !! (2, npoin) body of each node, x and y (equilibrium check)
+      integer :: nbody = 0
+      real(dp) :: force_scale = tiny(1.0_dp)       !! largest nodal force seen so far
+      logical :: warned_closure = .false.
+   end type analysis_t
+
 
    !> Outcome of one attempt at an increment (nothing committed yet).
    type :: attempt_t
@@ -76,4 +109,23 @@ contains
       call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                       itoa(att%solutions)//' solutions: '//what//advice)
    end subroutine attempt_failure
+
+   !> Name the node and dof of a singular equation in the message.
+   subroutine describe_singular(an, status)
+      type(analysis_t), intent(in) :: an
+      type(status_t), intent(inout) :: status
+      integer :: ieq, k
+      character(len=:), allocatable :: detail
+      if (status%code /= STAT_SINGULAR) return
+      ieq = an%sys%failed_equation()
+      if (ieq <= 0) return
+      ! keep the solver's pivot figures, name the node and dof instead of the equation
+      k = index(status%message, ': ')
+      detail = status%message(k + 1:)
+      if (k > 0) detail = status%message(k + 2:)
+      status%message = 'singular or unrestrained model at '//an%map%describe(ieq)//': '//detail
+      if (an%has_contact) status%message = status%message//'; a body held only by contact springs '// &
+                                           'has no support once they open (normal) or slip (tangential)'
+   end subroutine describe_singular
 end module increment_attempt
+

@@ -32,32 +32,31 @@
 !! reported in the run information.
 module incremental
    use kinds, only: dp, i8, stdout, stderr
-   use errors, only: status_t, STAT_SINGULAR, STAT_INPUT, STAT_NO_CONVERGENCE
-   use strings, only: itoa, rtoa, strip_extension, basename
+   use errors, only: status_t, STAT_INPUT, STAT_NO_CONVERGENCE
+   use strings, only: itoa, rtoa, strip_extension, basename, upper
    use model, only: model_t, NTYPE_AXISYMMETRIC, complete_model, model_complete
-   use dof_map, only: dof_map_t
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, STEP_CONVERGED, &
                       STEP_UNSETTLED
    use equation_numbering, only: numbering_report_t, number_equations, write_numbering_report
-   use linear_solver, only: linear_solver_t
-   use solver_factory, only: create_solver
-   use contact_system, only: contact_system_t, contact_equations
+   use solver_factory, only: create_solver, choose_solver
+   use contact_system, only: contact_equations
    use contact_system_factory, only: create_contact_system
-   use assembly, only: coupling_t, assemble_bodies, assemble_load_cases, load_increment
-   use contact_assembly, only: contact_springs_t, pair_links, spring_nodal_forces
+   use assembly, only: assemble_bodies, assemble_load_cases, load_increment
+   use contact_assembly, only: pair_links, spring_nodal_forces
    use body_fields, only: recover_stresses, update_reactions, number_bodies, body_imbalance, &
                           stiffness_range, zero_fields
    use contact_types, only: UPDATE_RETURN
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, commit_increment, &
                                 law_drift, augment_multipliers, MAX_SWITCH
    use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
-                         sliding_warning, check_finite_springs
+                         sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED
    use contact_start, only: init_contact_states, start_pressure, increment_pressure
-   use increment_attempt, only: attempt_t, attempt_failure
+   use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular
    use contact_fields, only: build_contact_fields, pair_spacing
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary
-   use listing, only: list_header, list_method, list_input, list_step, list_progress_header, list_progress, &
+   use progress_line, only: list_step_progress
+   use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
                       list_completed, list_failed, list_doubts, close_listing
    implicit none
    private
@@ -74,49 +73,19 @@ module incremental
    !> What a run leaves in memory (used by the tests and the caller): the
    !! body fields of the last step (disp, react, sig_nd, sig_gp, xygp,
    !! gp_start), the committed contact states and the contact fields, what the
-   !! run used, and the history of the steps' figures.
-   type, extends(body_fields_t) :: run_result_t
+   !! run used, and the history of the steps' figures (run_history_t:
+   !! iterations, repeats, residual, drift, imbalance, violations, penetration,
+   !! augmentations, one entry per step).
+   type, extends(run_history_t) :: run_result_t
       integer :: completed = 0                   !! increments finished
       type(contact_state_t) :: contact           !! committed contact states
       type(contact_fields_t) :: fields           !! contact fields of the last step (contact models)
       type(run_info_t) :: info                   !! what the run used (solver, caps, contact system)
-      integer, allocatable :: iterations(:)      !! solves per increment
-      integer, allocatable :: repeats(:)         !! repeats (mode changes) per increment
-      real(dp), allocatable :: residual(:)       !! relative out-of-balance force after each increment
-      real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
-      real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
-      integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
-      real(dp), allocatable :: penetration(:)    !! ideal contact: largest |u_n| (closed) or stick slip at the end
-      integer, allocatable :: augmentations(:)   !! ideal contact: multiplier updates per increment
       character(len=:), allocatable :: results_path
       logical :: reported = .false.              !! a failure was already printed
       integer :: warnings = 0                    !! warnings printed about the method (sliding)
       type(run_doubts_t) :: doubts               !! doubtful steps: the run ends doubtful (exit code 4)
    end type run_result_t
-
-   !> Everything the increment loop works with.
-   type :: analysis_t
-      type(dof_map_t) :: map
-      class(linear_solver_t), allocatable :: solver  !! the bodies' solver, until the contact system takes it
-      class(contact_system_t), allocatable :: sys    !! the system the increments solve
-      type(contact_springs_t) :: springs             !! equations and matrices of the pairs' springs
-      type(coupling_t) :: coup
-      real(dp), allocatable :: fcase(:, :, :)      !! (2, npoin, ncase) forces at factor 1
-      real(dp), allocatable :: ucase(:, :, :)      !! (2, npoin, ncase) prescribed displacements at factor 1
-      real(dp), allocatable :: diag(:)             !! (neq) diagonal of K_AB
-      logical, allocatable :: restrained(:, :)     !! (2, npoin)
-      integer :: npair = 0
-      integer :: maxrep = 30                       !! cap on solutions of one increment
-      logical :: has_contact = .false.
-      logical :: returning = .false.               !! RETURN update (Newton)
-      logical :: modified = .false.                !! modified Newton: stiffness kept within an increment
-      logical :: system_current = .false.          !! the system holds the springs of the current modes
-      real(dp), allocatable :: spacing(:)          !! (npair) distance to the nearest other pair
-      integer, allocatable :: body(:, :)           !! (2, npoin) body of each node, x and y (equilibrium check)
-      integer :: nbody = 0
-      real(dp) :: force_scale = tiny(1.0_dp)       !! largest nodal force seen so far
-      logical :: warned_closure = .false.
-   end type analysis_t
 
    !> Where a run reports: the result file, the listing, the terminal.
    type :: outputs_t
@@ -159,13 +128,16 @@ contains
       type(outputs_t) :: out
       type(numbering_report_t) :: numbering
       type(status_t) :: ostat
-      character(len=:), allocatable :: solver_name
+      character(len=:), allocatable :: solver_name, auto_reason
 
       call system_clock(out%t0, out%rate)
       solver_name = m%solver_name
       if (allocated(opts%solver_name)) then
          if (len(opts%solver_name) > 0) solver_name = opts%solver_name
       end if
+      ! no SOLVER in the deck (or AUTO) and no -s: from the model's size and contact
+      if (upper(trim(adjustl(solver_name))) == 'AUTO') &
+         call choose_solver(2*m%npoin, size(m%contact%pairs) > 0, solver_name, auto_reason)
       res%results_path = strip_extension(basename(m%deck_file))//'.h5'
       if (allocated(opts%results_path)) then
          if (len(opts%results_path) > 0) res%results_path = opts%results_path
@@ -178,6 +150,7 @@ contains
       out%quiet = opts%quiet
 
       call set_up(m, solver_name, an, numbering, status)
+      if (allocated(auto_reason)) numbering%solver_choice = solver_name//', chosen automatically ('//auto_reason//')'
       if (status%ok()) call start_run(m, an, res, status)
       if (status%ok()) then
          call open_outputs(m, numbering, res, out, status)
@@ -253,11 +226,8 @@ contains
       type(analysis_t), intent(inout) :: an
       type(run_result_t), intent(inout) :: res
       type(status_t), intent(inout) :: status
-      real(dp), allocatable :: kref(:, :, :)
-
       call zero_fields(m, res%body_fields_t)
-      allocate (res%iterations(0), res%repeats(0), res%residual(0), res%drift(0), res%imbalance(0), &
-                res%violations(0), res%penetration(0), res%augmentations(0))
+      call res%trim_history()
       call init_contact_states(m, res%contact)
       ! the cap on solutions per increment: CONTACT REPEATS, or 30 for the rough
       ! springs and 100 when the augmented Lagrangian of an ideal interface has
@@ -274,8 +244,8 @@ contains
       call stiffness_range(an%map, an%diag, status)
       if (.not. status%ok()) return
       ! the contact system takes the solver (K_AB) over
-      call an%springs%reference_springs(m%contact%pairs, an%diag, kref)
-      call an%sys%setup(an%solver, an%map, an%springs%peq, kref, status)
+      call an%springs%reference_springs(m%contact%pairs, an%diag, an%kref)
+      call an%sys%setup(an%solver, an%map, an%springs%peq, an%kref, status)
       if (.not. status%ok()) call stiffness_range(an%map, an%diag, status)
       if (.not. status%ok()) return
       deallocate (an%diag)
@@ -349,7 +319,7 @@ contains
       type(step_record_t) :: srec
       real(dp), allocatable :: fext(:, :), fext_new(:, :), carry(:), dlam(:), ve_old(:)
       integer :: inc, nstep, cuts, ic
-      logical :: first, rough_newton
+      logical :: first, rough_newton, last, written, full
       real(dp) :: frac, step, s
 
       allocate (fext(2, m%npoin), fext_new(2, m%npoin), carry(an%map%neq), dlam(m%ncase), ve_old(an%npair))
@@ -400,11 +370,18 @@ contains
                cycle
             end if
 
-            ! ---- the step is accepted: the full displacement increment, then commit
-            call an%sys%recover(att%du, .true., status)
-            if (.not. status%ok()) exit deck
+            ! ---- the step is accepted: the full displacement increment where the step's body
+            ! fields are needed (written, listed or the last; contact models: the contact
+            ! solution is exact whatever the recovery), then commit
             nstep = nstep + 1
             frac = frac + s
+            last = inc == m%nincs .and. frac >= 1.0_dp - 1.0e-12_dp
+            ! OPTIONS RESULTS n: only every n-th step and the last go into the result file
+            written = last .or. mod(nstep, m%results_every) == 0
+            full = written .or. .not. an%has_contact .or. (out%have_lis .and. out%lis_level == 'FULL')
+            call an%sys%recover(att%du, full, status)
+            if (.not. status%ok()) exit deck
+            an%pending = .not. full
             first = .false.
             fext = fext_new
             carry = att%carry
@@ -417,11 +394,9 @@ contains
                                  residual=merge(att%rnorm, 0.0_dp, an%has_contact), &
                                  penetration=res%contact%violation, augmentations=res%contact%augmentations, &
                                  status=merge(STEP_CONVERGED, STEP_UNSETTLED, att%converged), contact=an%has_contact, &
-                                 ideal=res%contact%has_ideal, last=inc == m%nincs .and. frac >= 1.0_dp - 1.0e-12_dp)
+                                 ideal=res%contact%has_ideal, last=last, written=written, full=full)
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
             if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
-            ! OPTIONS RESULTS n: only every n-th step and the last go into the result file
-            srec%written = srec%last .or. mod(nstep, m%results_every) == 0
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
             if (.not. status%ok()) exit deck
             cuts = 0
@@ -429,7 +404,49 @@ contains
                step = min(1.0_dp, 2.0_dp*step)
          end do
       end do deck
+      call res%trim_history()
+      if (an%pending) call complete_postponed(m, an, res, fext)
    end subroutine solve_history
+
+   !> A run that stopped after steps whose full field was postponed: the
+   !! postponed part of the displacements (one more recovery of the contact
+   !! system with a zero increment, on the reference springs, which keep it
+   !! regular whatever the springs of the failed attempt were) and the body
+   !! fields of the last finished step, for the summary and the caller.
+   subroutine complete_postponed(m, an, res, fext)
+      type(model_t), intent(in) :: m
+      type(analysis_t), intent(inout) :: an
+      type(run_result_t), intent(inout) :: res
+      real(dp), intent(in) :: fext(:, :)            !! external forces of the last finished step
+      type(status_t) :: st                          !! (the run's own failure is what it reports)
+      real(dp), allocatable :: b(:), du(:, :), fsp(:, :)
+      allocate (b(an%map%neq), du(2, m%npoin))
+      b = 0.0_dp
+      du = 0.0_dp
+      call an%sys%set_springs(an%kref, st)
+      call an%sys%begin_attempt()
+      if (st%ok()) call an%sys%solve(b, du, st)
+      du = 0.0_dp                                   ! (the zero increment at the contact dofs)
+      if (st%ok()) call an%sys%recover(du, .true., st)
+      if (.not. st%ok()) return
+      an%pending = .false.
+      res%disp = res%disp + merge(0.0_dp, du, an%restrained)
+      call body_step_fields(m, an, res, fext, fsp, st)
+   end subroutine complete_postponed
+
+   !> The body fields of a step from its full displacements: stresses, spring
+   !! forces at the nodes (fsp) and reactions.
+   subroutine body_step_fields(m, an, res, fext, fsp, status)
+      type(model_t), intent(in) :: m
+      type(analysis_t), intent(in) :: an
+      type(run_result_t), intent(inout) :: res
+      real(dp), intent(in) :: fext(:, :)
+      real(dp), allocatable, intent(out) :: fsp(:, :)
+      type(status_t), intent(inout) :: status
+      call spring_nodal_forces(m%contact, res%contact, m%npoin, fsp)
+      call recover_stresses(m, res%body_fields_t, status)
+      if (status%ok()) call update_reactions(an%coup, an%map, fext, fsp, res%body_fields_t)
+   end subroutine body_step_fields
 
    !> One attempt at an increment of the load factors dlam from the committed
    !! state: solve, check the springs, repeat until they keep their modes and
@@ -581,24 +598,6 @@ contains
       if (.not. status%ok()) call describe_singular(an, status)
    end subroutine set_system
 
-   !> Name the node and dof of a singular equation in the message.
-   subroutine describe_singular(an, status)
-      type(analysis_t), intent(in) :: an
-      type(status_t), intent(inout) :: status
-      integer :: ieq, k
-      character(len=:), allocatable :: detail
-      if (status%code /= STAT_SINGULAR) return
-      ieq = an%sys%failed_equation()
-      if (ieq <= 0) return
-      ! keep the solver's pivot figures, name the node and dof instead of the equation
-      k = index(status%message, ': ')
-      detail = status%message(k + 1:)
-      if (k > 0) detail = status%message(k + 2:)
-      status%message = 'singular or unrestrained model at '//an%map%describe(ieq)//': '//detail
-      if (an%has_contact) status%message = status%message//'; a body held only by contact springs '// &
-                                           'has no support once they open (normal) or slip (tangential)'
-   end subroutine describe_singular
-
    !> Fields, checks, output and progress of an accepted step.
    subroutine finish_step(m, an, res, out, fext, ve_old, srec, status)
       type(model_t), intent(in) :: m
@@ -612,29 +611,28 @@ contains
       real(dp) :: imb
       integer(i8) :: t1
 
-      call recover_stresses(m, res%body_fields_t, status)
-      if (.not. status%ok()) return
-      call spring_nodal_forces(m%contact, res%contact, m%npoin, fsp)
-      call update_reactions(an%coup, an%map, fext, fsp, res%body_fields_t)
-      call check_finite_step(res%body_fields_t, res%contact, an%has_contact, srec%drift, status)
+      ! the body fields where the full displacements were recovered (srec%full)
+      if (srec%full) then
+         call body_step_fields(m, an, res, fext, fsp, status)
+      else
+         call spring_nodal_forces(m%contact, res%contact, m%npoin, fsp)
+      end if
+      call check_finite_step(res%body_fields_t, res%contact, an%has_contact, srec%drift, srec%full, status)
       if (.not. status%ok()) return
 
       ! invariants (SPEC §7): every body in equilibrium under loads, reactions
-      ! and spring forces; no tension; |F_T| <= mu F_n; v_e non-decreasing;
-      ! frozen states and law drift: a doubtful step, named where it happens
-      an%force_scale = max(an%force_scale, maxval(abs(fext)), maxval(abs(res%react)), maxval(abs(fsp)))
-      imb = body_imbalance(an%body, an%nbody, fext + res%react - fsp, an%force_scale, m%ntype == NTYPE_AXISYMMETRIC)
+      ! and spring forces (where the body fields were computed); no tension;
+      ! |F_T| <= mu F_n; v_e non-decreasing; frozen states and law drift: a
+      ! doubtful step, named where it happens
+      an%force_scale = max(an%force_scale, maxval(abs(fext)), maxval(abs(fsp)))
+      imb = IMBALANCE_NOT_COMPUTED
+      if (srec%full) then
+         an%force_scale = max(an%force_scale, maxval(abs(res%react)))
+         imb = body_imbalance(an%body, an%nbody, fext + res%react - fsp, an%force_scale, m%ntype == NTYPE_AXISYMMETRIC)
+      end if
       call audit_step(m%contact, res%contact, ve_old, imb, an%has_contact, srec)
       call note_doubts(res%doubts, srec, stderr)
-      ! the history of the run
-      res%iterations = [res%iterations, srec%solutions]
-      res%repeats = [res%repeats, srec%repeats]
-      res%residual = [res%residual, srec%residual]
-      res%drift = [res%drift, srec%drift]
-      res%penetration = [res%penetration, srec%penetration]
-      res%augmentations = [res%augmentations, srec%augmentations]
-      res%imbalance = [res%imbalance, imb]
-      res%violations = [res%violations, srec%violations]
+      call res%append_history(srec)
       if (an%has_contact) call build_contact_fields(m%contact, res%contact, res%fields)
 
       if (srec%written) then
@@ -646,7 +644,7 @@ contains
          call list_step(out%lu, m, srec, res%body_fields_t, res%fields)
       call system_clock(t1)
       if (.not. out%quiet) then
-         call list_progress(stdout, srec, res%body_fields_t, real(t1 - out%t0, dp)/real(out%rate, dp), res%fields)
+         call list_step_progress(stdout, srec, res%body_fields_t, real(t1 - out%t0, dp)/real(out%rate, dp), res%fields)
          flush (stdout)
       end if
    end subroutine finish_step

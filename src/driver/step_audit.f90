@@ -14,6 +14,9 @@
 !!   increments concerned are named on the terminal, in the listing and in the
 !!   result file.
 !!
+!! * History: the figures of every accepted step (run_history_t, which the
+!!   driver's run result extends), kept in arrays that grow by doubling.
+!!
 !! Ref: SPEC §7 (invariants), §4.2 (drift of the explicit scheme).
 module step_audit
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
@@ -28,7 +31,30 @@ module step_audit
    implicit none
    private
    public :: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, pair_list
-   public :: sliding_warning, check_finite_springs
+   public :: sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED
+
+   !> step%imbalance of a step whose body fields were not computed (its
+   !! results are not written: OPTIONS RESULTS), so its equilibrium was not checked.
+   real(dp), parameter :: IMBALANCE_NOT_COMPUTED = -1.0_dp
+
+   !> The body fields of the last step and the figures of every accepted
+   !! step (one entry per step after `trim_history`; during the run the
+   !! arrays grow by doubling and hold `nhist` entries).
+   type, extends(body_fields_t) :: run_history_t
+      integer :: nhist = 0                       !! steps held
+      integer, allocatable :: iterations(:)      !! solves per increment
+      integer, allocatable :: repeats(:)         !! repeats (mode changes) per increment
+      real(dp), allocatable :: residual(:)       !! relative out-of-balance force after each increment
+      real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
+      real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
+                                                 !! (IMBALANCE_NOT_COMPUTED: a step not written)
+      integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
+      real(dp), allocatable :: penetration(:)    !! ideal contact: largest |u_n| (closed) or stick slip at the end
+      integer, allocatable :: augmentations(:)   !! ideal contact: multiplier updates per increment
+   contains
+      procedure :: append_history
+      procedure :: trim_history
+   end type run_history_t
 
 contains
 
@@ -61,16 +87,17 @@ contains
    !! non-finite number: displacements, reactions, stresses, the committed
    !! spring forces and closures, and the law's force at the closures (the
    !! drift: the law overflows where the closure is finite but huge).
-   subroutine check_finite_step(body, st, has_contact, drift, status)
+   subroutine check_finite_step(body, st, has_contact, drift, full, status)
       type(body_fields_t), intent(in) :: body
       type(contact_state_t), intent(in) :: st
       logical, intent(in) :: has_contact
       real(dp), intent(in) :: drift                 !! the step's law drift (law_drift)
+      logical, intent(in) :: full                   !! the body fields were computed (else: contact only)
       type(status_t), intent(inout) :: status
       integer :: k
-      call check_nodal(body%disp, 'displacement', status)
-      if (status%ok()) call check_nodal(body%react, 'reaction', status)
-      if (status%ok() .and. .not. all(ieee_is_finite(body%sig_gp))) then
+      if (full) call check_nodal(body%disp, 'displacement', status)
+      if (status%ok() .and. full) call check_nodal(body%react, 'reaction', status)
+      if (status%ok() .and. full .and. .not. all(ieee_is_finite(body%sig_gp))) then
          k = first_bad(reshape(body%sig_gp, [size(body%sig_gp)]))
          call status%set(STAT_NONFINITE, 'non-finite stress ('//text(body%sig_gp(mod(k - 1, 4) + 1, (k - 1)/4 + 1))// &
                          ') at Gauss point '//itoa((k - 1)/4 + 1)//'; '//cause())
@@ -255,6 +282,62 @@ contains
       end do
       k = 0
    end function first_bad
+
+   !> Append the figures of an accepted step; the arrays double when full.
+   pure subroutine append_history(h, step)
+      class(run_history_t), intent(inout) :: h
+      type(step_record_t), intent(in) :: step
+      integer :: n
+      if (.not. allocated(h%iterations)) call resize(h, 0, 16)
+      if (h%nhist == size(h%iterations)) call resize(h, h%nhist, max(16, 2*h%nhist))
+      n = h%nhist + 1
+      h%iterations(n) = step%solutions
+      h%repeats(n) = step%repeats
+      h%residual(n) = step%residual
+      h%drift(n) = step%drift
+      h%penetration(n) = step%penetration
+      h%augmentations(n) = step%augmentations
+      h%imbalance(n) = step%imbalance
+      h%violations(n) = step%violations
+      h%nhist = n
+   end subroutine append_history
+
+   !> Cut the arrays to the steps held (at the end of the load history).
+   pure subroutine trim_history(h)
+      class(run_history_t), intent(inout) :: h
+      call resize(h, h%nhist, h%nhist)
+   end subroutine trim_history
+
+   !> The history arrays with room for cap entries, the first n kept.
+   pure subroutine resize(h, n, cap)
+      class(run_history_t), intent(inout) :: h
+      integer, intent(in) :: n, cap
+      call grow_int(h%iterations)
+      call grow_int(h%repeats)
+      call grow_int(h%augmentations)
+      call grow_int(h%violations)
+      call grow_real(h%residual)
+      call grow_real(h%drift)
+      call grow_real(h%penetration)
+      call grow_real(h%imbalance)
+   contains
+      pure subroutine grow_int(a)
+         integer, allocatable, intent(inout) :: a(:)
+         integer, allocatable :: b(:)
+         allocate (b(cap))
+         b = 0
+         if (n > 0) b(1:n) = a(1:n)
+         call move_alloc(b, a)
+      end subroutine grow_int
+      pure subroutine grow_real(a)
+         real(dp), allocatable, intent(inout) :: a(:)
+         real(dp), allocatable :: b(:)
+         allocate (b(cap))
+         b = 0.0_dp
+         if (n > 0) b(1:n) = a(1:n)
+         call move_alloc(b, a)
+      end subroutine grow_real
+   end subroutine resize
 
    !> A fraction as a percentage with one decimal.
    function percent(x) result(s)

@@ -72,7 +72,7 @@ contains
       call d%load(path, loaded)
       m%deck_file = path
       m%title = ''
-      m%solver_name = 'SKYLINE'
+      m%solver_name = 'AUTO'
       m%listing_level = 'SHORT'
       m%renumber = 'AUTO'
       m%condense = 'AUTO'
@@ -387,7 +387,7 @@ contains
       call d%get_int(ic, 21, 25, 'CONTROL', 'NNODE', m%nnode, ok, default=0)
       call d%get_int(ic, 26, 30, 'CONTROL', 'NMATS', m%nmats, ok)
       call d%get_int(ic, 31, 35, 'CONTROL', 'NGAUS', m%ngaus, ok, default=0)
-      call d%get_word(ic, 36, 45, 'CONTROL', 'SOLVER', w, ok, default='SKYLINE')
+      call d%get_word(ic, 36, 45, 'CONTROL', 'SOLVER', w, ok, default='AUTO')
       ctl%counts_from_mesh = ok .and. m%npoin == 0 .and. m%nelem == 0
       if (ok) then
          if (ctl%counts_from_mesh) then
@@ -412,8 +412,9 @@ contains
                                                     'or 1-4 Gauss points per direction, found '//itoa(m%ngaus))
          if (m%nnode == 3 .and. all(m%ngaus /= [0, 1, 3])) call bad(31, 'NGAUS (columns 31-35) for triangles '// &
                                                                     'expected 0, 1 or 3 points, found '//itoa(m%ngaus))
-         if (all(w /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'MUMPS', 'DENSE'])) &
-            call bad(36, 'SOLVER (columns 36-45) expected SKYLINE, UMFPACK, MUMPS or DENSE, found "'//w//'"')
+         if (all(w /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'MUMPS', 'DENSE', 'AUTO'])) &
+            call bad(36, 'SOLVER (columns 36-45) expected SKYLINE, UMFPACK, MUMPS, DENSE, AUTO or blank (AUTO), '// &
+                     'found "'//w//'"')
       end if
       m%solver_name = w
       ctl%ok = ok

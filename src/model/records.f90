@@ -74,6 +74,8 @@ module records
       logical :: ideal = .false.             !! some interface is ideal: penetration, augmentations apply
       logical :: last = .false.              !! the last step of the load history
       logical :: written = .false.           !! goes into the result file (OPTIONS RESULTS)
+      logical :: full = .true.               !! its body fields were computed: full displacements, stresses,
+                                             !! reactions, imbalance (written, listed or last steps of a contact run)
       character(len=:), allocatable :: doubts  !! why the step is doubtful ('' if it is not): frozen
                                                !! states, drift, violations, naming the pairs
    end type step_record_t

@@ -51,8 +51,10 @@
 !!   attempt.  With need_full = .false. the caller does not need the dofs away
 !!   from the contact equations for this step (its fields are not written) and
 !!   an implementation may postpone that work, keeping what it needs to add it
-!!   to the next recover with need_full = .true.; today's implementations
-!!   recover always.
+!!   to the next recover with need_full = .true. (mumps_schur_system does;
+!!   full_system has nothing to recover, condensed_system recovers always).
+!!   The driver passes .false. for the steps of a contact run that are neither
+!!   written nor listed nor the last.
 module contact_system
    use kinds, only: dp, i8
    use errors, only: status_t

@@ -37,7 +37,19 @@ module solver_factory
    implicit none
    private
 
-   public :: create_solver, solver_names
+   public :: create_solver, solver_names, choose_solver
+   public :: AUTO_MUMPS_CONTACT_DOFS, AUTO_MUMPS_DOFS, AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS
+
+   !> Crossovers of the automatic choice (DOFs = 2 per node, before the
+   !! restraints), from the measurements of docs/performance.md: the sparse
+   !! solvers win from these sizes on, the skyline solver below them.
+   integer, parameter :: AUTO_MUMPS_CONTACT_DOFS = 5000     !! contact: Schur path faster from the sphere at
+                                                           !! a_H/5 (5 932 DOFs) on, even at 2 756 (punch_5_1)
+   integer, parameter :: AUTO_MUMPS_DOFS = 10000            !! no contact: one MUMPS solve at 1e4 DOFs takes
+                                                           !! 0.019 s, the skyline's about 0.1 s
+   integer, parameter :: AUTO_UMFPACK_CONTACT_DOFS = 10000  !! contact without MUMPS: condensation with UMFPACK
+                                                           !! 2.6 x faster at 1e4 DOFs, equal at 5 932
+   integer, parameter :: AUTO_UMFPACK_DOFS = 30000          !! no contact: UMFPACK faster from 3e4 equations
 
 contains
 
@@ -79,6 +91,44 @@ contains
                          '"; valid names are: '//solver_names())
       end select
    end subroutine create_solver
+
+   !> The solver of a deck that names none (SOLVER blank or AUTO) and of no
+   !! -s option: MUMPS (the Schur complement of its factorization for
+   !! contact) when the build has it and the model has at least
+   !! AUTO_MUMPS_CONTACT_DOFS (contact) or AUTO_MUMPS_DOFS (none) DOFs, else
+   !! UMFPACK from AUTO_UMFPACK_CONTACT_DOFS or AUTO_UMFPACK_DOFS, else the
+   !! skyline solver; an MPI run of several processes takes MUMPS, its only
+   !! solver.  `reason` says why, for the listing.
+   !!
+   !! Ref: docs/performance.md, "Crossover" and "Automatic choice".
+   subroutine choose_solver(ndof, contact, name, reason)
+      integer, intent(in) :: ndof                           !! degrees of freedom, 2 per node
+      logical, intent(in) :: contact                        !! the model has contact pairs
+      character(len=:), allocatable, intent(out) :: name    !! skyline, umfpack or mumps
+      character(len=:), allocatable, intent(out) :: reason
+      character(len=:), allocatable :: what
+      logical :: mumps, umfpack
+      mumps = index(solver_names(), 'mumps') > 0
+      umfpack = index(solver_names(), 'umfpack') > 0
+      what = merge('contact model', 'model        ', contact)
+      what = trim(what)//' of '//itoa(ndof)//' DOFs'
+      if (mumps .and. process_count() > 1) then
+         name = 'mumps'
+         reason = 'the solver of MPI runs'
+      else if (mumps .and. ndof >= merge(AUTO_MUMPS_CONTACT_DOFS, AUTO_MUMPS_DOFS, contact)) then
+         name = 'mumps'
+         reason = what//' >= '//itoa(merge(AUTO_MUMPS_CONTACT_DOFS, AUTO_MUMPS_DOFS, contact))
+      else if (umfpack .and. ndof >= merge(AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS, contact)) then
+         name = 'umfpack'
+         reason = what//' >= '//itoa(merge(AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS, contact))
+         if (.not. mumps) reason = reason//', built without MUMPS'
+      else
+         name = 'skyline'
+         reason = what//' < '//itoa(merge(merge(AUTO_MUMPS_CONTACT_DOFS, AUTO_MUMPS_DOFS, contact), &
+                                          merge(AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS, contact), mumps))
+         if (.not. (mumps .or. umfpack)) reason = 'built without a sparse solver'
+      end if
+   end subroutine choose_solver
 
    !> Valid solver names of this build, comma-separated.
    pure function solver_names() result(s)
