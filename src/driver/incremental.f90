@@ -635,13 +635,11 @@ contains
       call res%append_history(srec)
       if (an%has_contact) call build_contact_fields(m%contact, res%contact, res%fields)
 
-      if (srec%written) then
-         call out%rf%write_increment(srec, res%body_fields_t, status, res%fields)
-         if (.not. status%ok()) return
-      end if
+      if (srec%written) call out%rf%write_increment(srec, res%body_fields_t, status, res%fields)
+      if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) &
+         call list_step(out%lu, m, srec, res%body_fields_t, res%fields, out%lis_path, status)
+      if (.not. status%ok()) return
       res%completed = srec%step
-      if (out%have_lis .and. (out%lis_level == 'FULL' .or. srec%last)) &
-         call list_step(out%lu, m, srec, res%body_fields_t, res%fields)
       call system_clock(t1)
       if (.not. out%quiet) then
          call list_step_progress(stdout, srec, res%body_fields_t, real(t1 - out%t0, dp)/real(out%rate, dp), res%fields)
@@ -658,6 +656,8 @@ contains
       type(status_t), intent(inout) :: status   !! a failure to write the listing or the result file ends it
       character(len=:), allocatable :: doubts
       integer :: done, every
+      logical :: ran                            !! every increment done (what fails now, fails after them)
+      ran = status%ok() .and. .not. out%set_up_failed
       done = merge(-1, res%completed, out%set_up_failed)
       every = merge(1, m%results_every, out%set_up_failed)
       ! the listing's closing lines and summary; the listing is then closed and
@@ -684,6 +684,8 @@ contains
       if (.not. status%ok()) then
          if (out%set_up_failed) then
             call out%rf%set_status('failed at set-up: '//status%message)
+         else if (ran) then
+            call out%rf%set_status('failed after the last increment ('//itoa(res%completed)//'): '//status%message)
          else
             call out%rf%set_status('failed at increment '//itoa(res%completed + 1)//': '//status%message)
          end if

@@ -206,15 +206,18 @@ contains
 
    !> The results of one step: displacements and reactions, the contact
    !! table (contact models), the Gauss-point stresses.
-   subroutine list_step(u, m, step, body, contact)
+   subroutine list_step(u, m, step, body, contact, path, status)
       integer, intent(in) :: u
       type(model_t), intent(in) :: m
       type(step_record_t), intent(in) :: step
       type(body_fields_t), intent(in) :: body
       type(contact_fields_t), intent(in), optional :: contact   !! listed when step%contact
+      character(len=*), intent(in), optional :: path            !! the listing's file: with `status`, the
+      type(status_t), intent(inout), optional :: status         !! listing is then checked (check_listing)
       call list_displacements(u, m, step, body)
       if (step%contact .and. present(contact)) call list_contact(u, m%contact, step, contact)
       call list_stresses(u, m, body%gp_start, body%xygp, body%sig_gp)
+      if (present(path) .and. present(status)) call check_listing(u, path, status)
    end subroutine list_step
 
    !> Displacements and reactions of one step.

@@ -8,7 +8,8 @@ the increment groups that are complete and readable (every field of
 results-format.md), and no group that is not must be marked converged.  With
 --failed, or --exit 3, the status must say that the run failed and where: at
 set-up, or at an increment after the last completed one (or at the last
-completed one when what failed was its listing or XDMF file).  With --exit 3 a
+completed one, or after the last one, when what failed was the listing or the
+XDMF file).  With --exit 3 a
 missing file passes (the disk had no room even for the run's reserve: the
 caller checks the message); without it a missing file fails.  No reserve file
 (RESULT.h5.reserve) may be left.  Exit 0 when that holds, 1 otherwise.
@@ -49,7 +50,7 @@ def main():
         print(f"{path}: unreadable groups marked converged: {marked_broken}")
         ok = False
     if failed:
-        m = re.match(r"failed at (set-up|increment (\d+)): \S", status)
+        m = re.match(r"failed (?:at (set-up|increment (\d+))|after the last increment \((\d+)\)): \S", status)
         last = max((int(name) for name, good, _ in groups if good), default=0)
         # the listing and the XDMF file are written after the increment's group:
         # when they fail, the group of the increment named is complete
@@ -59,6 +60,9 @@ def main():
             ok = False
         elif m.group(2) is not None and int(m.group(2)) < last + (0 if side_file else 1):
             print(f"{path}: status {status!r} names an increment not after the last complete one ({last})")
+            ok = False
+        elif m.group(3) is not None and (int(m.group(3)) != completed or not side_file):
+            print(f"{path}: status {status!r}: not the listing or XDMF file after increment {completed}")
             ok = False
         elif m.group(1) == "set-up" and groups:
             print(f"{path}: status {status!r} says set-up, but the file has increment groups")
