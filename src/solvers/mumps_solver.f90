@@ -74,18 +74,13 @@ module mumps_solver
    public :: mumps_solver_t
    public :: ORDERING_AMD, ORDERING_SCOTCH, ORDERING_PORD, ORDERING_AUTO, ORDERING_METIS, ORDERING_DEFAULT
 
-   !> Fill-reducing orderings (ICNTL(7)).  AMD is the default: deterministic,
-   !! cheap, and on the plane meshes measured as good as the nested
-   !! dissections Debian's MUMPS offers (SCOTCH, PORD; it has no METIS): on a
-   !! plane-strain Q4 block of 5e5 equations the factorization flops were
-   !! 2.19e10 (AMD), 2.27e10 (PORD), 2.11e10 (METIS given as PERM_IN), the
-   !! factorization times equal within the noise, and AMD's analysis the
-   !! fastest (0.26 s against 0.8 s for PORD and 1.9 s for METIS alone).
-   !! PORD stops the whole process (`exit`) on a graph it cannot split (a
-   !! dense one: "no valid number of stages in multisector", met here on a
-   !! 3-equation system), and SCOTCH's orderings differ from run to run
-   !! (threads), so that results would not be bit-reproducible: both are
-   !! available, not the default.
+   !> Fill-reducing orderings of MUMPS (ICNTL(7)).  AMD: deterministic and
+   !! the cheapest analysis (0.3 s at 3e5 equations), the default for one
+   !! factorization.  PORD stops the whole process (`exit`) on a graph it
+   !! cannot split (a dense one: "no valid number of stages in
+   !! multisector", met here on a 3-equation system), and SCOTCH's orderings
+   !! differ from run to run (threads), so that results would not be
+   !! bit-reproducible: both are available, never the default.
    integer, parameter :: ORDERING_AMD = 0, ORDERING_SCOTCH = 3, ORDERING_PORD = 4, ORDERING_AUTO = 7
    !> METIS's nested dissection (`metis_ordering`) given to MUMPS as a user
    !! ordering (ICNTL(7) = 1, PERM_IN); the value is MUMPS's INFOG(7) code
@@ -94,9 +89,9 @@ module mumps_solver
    !> The default ordering (the value of `ordering` until it is set): AMD,
    !! but METIS when the pattern will be factorized many times
    !! (`expect_refactorizations`, the full contact system) and has at least
-   !! METIS_MIN_NEQ equations.  METIS's ordering costs several times AMD's
-   !! (1.3 s against 0.3 s at 3e5 equations) and saves 20-30 % of each
-   !! factorization from about 3e4 equations on: it pays back after a few
+   !! METIS_MIN_NEQ equations.  METIS's analysis costs several times AMD's
+   !! (1.5 s against 0.3 s at 3e5 equations) and saves 16-35 % of each
+   !! factorization from 3e4 equations on: it pays back after 3 to 9
    !! factorizations, never in one (the Schur path, a model without contact).
    !! Measurements: docs/performance.md, "Orderings".
    integer, parameter :: ORDERING_DEFAULT = -1
