@@ -256,15 +256,15 @@ contains
       this%analysis_seconds = t1 - t0
    end subroutine mumps_run_analysis
 
-   !> The ordering the next analysis uses: `ordering`, or for the default
-   !! METIS when many factorizations of a large enough pattern are expected
-   !! (and the build has METIS), else AMD.
+   !> The ordering the next analysis is to use: `ordering`, or for the
+   !! default METIS when many factorizations of a large enough pattern are
+   !! expected, else AMD.  (METIS without METIS in the build: AMD, noted.)
    pure integer function effective_ordering(this) result(k)
       class(mumps_solver_t), intent(in) :: this
       k = this%ordering
       if (k /= ORDERING_DEFAULT) return
       k = ORDERING_AMD
-      if (this%many .and. this%neq >= this%metis_min_neq .and. metis_available()) k = ORDERING_METIS
+      if (this%many .and. this%neq >= this%metis_min_neq) k = ORDERING_METIS
    end function effective_ordering
 
    !> Many factorizations of this pattern are to come (see ORDERING_DEFAULT).
@@ -773,15 +773,24 @@ contains
       n = this%ordering_used
    end function mumps_ordering_of_analysis
 
-   !> The ordering of the last analysis in words, for the listing; it says
-   !! when METIS was asked for and the build has none; empty before the
-   !! first analysis.
+   !> The ordering in words, for the listing: that of the last analysis, or
+   !! before the first one the ordering it will use; it says when METIS was
+   !! asked for and the build has none.  Empty before `analyse`.
    function mumps_ordering_note(this) result(s)
       class(mumps_solver_t), intent(in) :: this
       character(len=:), allocatable :: s
-      select case (this%ordering_used)
-      case (-1)
-         s = ''            ! not analysed yet
+      integer :: k
+      logical :: missing
+      s = ''
+      if (this%state == ST_EMPTY) return
+      k = this%ordering_used
+      missing = this%metis_missing
+      if (.not. this%analysed) then
+         k = effective_ordering(this)
+         missing = k == ORDERING_METIS .and. .not. metis_available()
+         if (missing) k = ORDERING_AMD
+      end if
+      select case (k)
       case (ORDERING_AMD)
          s = 'AMD ordering'
       case (ORDERING_METIS)
@@ -791,9 +800,9 @@ contains
       case (ORDERING_PORD)
          s = 'PORD ordering'
       case default
-         s = 'MUMPS ordering '//itoa(this%ordering_used)
+         s = 'MUMPS ordering '//itoa(k)
       end select
-      if (this%metis_missing) s = s//' (METIS asked for: this build has no METIS)'
+      if (missing) s = s//' (METIS would be used: this build has no METIS)'
    end function mumps_ordering_note
 
    !> Factorize the assembled values with the equations `vars` kept out of
