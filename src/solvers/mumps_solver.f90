@@ -22,9 +22,10 @@
 !! given as a user ordering (ICNTL(7) = 1, PERM_IN from `metis_ordering`;
 !! Debian's MUMPS is not linked with METIS), or MUMPS's SCOTCH and PORD.
 !! With a Schur complement MUMPS ignores ICNTL(7) = 0, 3, 4 (it orders by
-!! AMD) but takes a user ordering, which must number the Schur variables
-!! last: they are given the last places, in their order, and METIS orders
-!! the graph of the other equations.  Without METIS in the build the METIS
+!! AMD) but takes a user ordering (INFOG(7) = 1 after the analysis, checked
+!! by the unit tests).  The Schur variables are given the last places, in
+!! their order (MUMPS keeps them out of the elimination: last is where they
+!! belong), and METIS orders the graph of the other equations.  Without METIS in the build the METIS
 !! ordering falls back to AMD (`ordering_note` says so).  Which ordering is
 !! the default, and why, is said at ORDERING_DEFAULT.
 !!
@@ -276,7 +277,7 @@ contains
    !> PERM_IN (the place of every equation in the pivot order) from METIS's
    !! nested dissection: of the whole pattern, or, with Schur variables, of
    !! the pattern of the other equations, the Schur variables placed last in
-   !! the order of LISTVAR_SCHUR (MUMPS requires them last).  Times the
+   !! the order of LISTVAR_SCHUR (they are not eliminated).  Times the
    !! ordering (ordering_seconds).
    subroutine metis_perm_in(this, perm_in, status)
       class(mumps_solver_t), intent(inout) :: this
