@@ -2,8 +2,11 @@
 !! (tools/bench_scaling.py runs it once per mesh, beside the runs of the
 !! deck, so that every ratio compares figures of the same mesh and run):
 !!
-!!     bench_contact DECK
+!!     bench_contact DECK [amd|metis]
 !!
+!! (the MUMPS ordering, default the solver's default: AMD or METIS's nested
+!! dissection given as a user ordering, for the plain and the Schur
+!! factorization alike)
 !! The deck is read and numbered as kontakt2d does with the MUMPS solver,
 !! K_AB assembled, and the pairs' reference springs K_ref added (as both
 !! condensations do), then timed:
@@ -21,7 +24,11 @@
 !! proj_setup_s, proj_factorize_s, proj_solve_s (the same in the springs' own
 !! coordinates: set-up once, then per set of springs), peak_rss_mb (VmHWM),
 !! max_rel_diff (largest difference of the Schur path's solution from the
-!! plain solve's, relative to its largest entry).  CPU times (cpu_time, one
+!! plain solve's, relative to its largest entry), ordering (the ordering
+!! MUMPS used: amd or metis), ordering_s (METIS's time in analyse_s, 0 for
+!! AMD), schur_analyse_s (the analysis in schur_s, ordering included),
+!! schur_ordering_s (METIS's time in it), nnz_factor_schur (entries of the
+!! factors of K_bb and the complement).  CPU times (cpu_time, one
 !! thread: OPENBLAS_NUM_THREADS=1 is the benchmark's setting).
 program bench_contact
    use kinds, only: dp, i8
@@ -37,7 +44,7 @@ program bench_contact
    use contact_system, only: contact_equations
    use contact_dense, only: contact_dense_t
 #ifdef KONTAKT2D_HAVE_MUMPS
-   use mumps_solver, only: mumps_solver_t
+   use mumps_solver, only: mumps_solver_t, ORDERING_AMD, ORDERING_METIS
 #endif
    implicit none
 
@@ -53,9 +60,10 @@ program bench_contact
    integer, allocatable :: xadj(:), adjncy(:), links(:, :), ceq(:), pos(:), ppos(:, :)
    real(dp), allocatable :: diag(:), kref(:, :, :), b(:), x(:), y(:), g(:), dk(:, :, :)
    character(len=512) :: deck
+   character(len=16) :: ord
    integer :: j, k, nc
-   integer(i8) :: nnzf
-   real(dp) :: t0, t_an, t_as, t_fa, t_so, t_sc, t_co, t_ex, t_df, t_ds, t_ps, t_pf, t_pv
+   integer(i8) :: nnzf, nnzs
+   real(dp) :: t0, t_an, t_as, t_fa, t_so, t_sc, t_co, t_ex, t_df, t_ds, t_ps, t_pf, t_pv, t_or, t_sa, t_so2
 
    call get_command_argument(1, deck)
    if (len_trim(deck) == 0) stop 'usage: bench_contact DECK'
@@ -67,11 +75,33 @@ program bench_contact
    call pair_links(m%contact%pairs, links)
    call number_equations(m, 'MUMPS', links, map, xadj, adjncy, rep, st, ties=m%ties)
    call check('numbering')
+   call get_command_argument(2, ord)
    call create_solver('mumps', s, st)
    call check('create_solver')
+   t_or = 0.0_dp
    call cpu_time(t0)
-   call s%analyse(map%neq, xadj, adjncy, st)
-   call check('analyse')
+#ifdef KONTAKT2D_HAVE_MUMPS
+   select type (s)
+   type is (mumps_solver_t)
+      select case (trim(ord))
+      case ('amd')
+         s%ordering = ORDERING_AMD
+      case ('metis')
+         s%ordering = ORDERING_METIS
+      case ('')
+      case default
+         stop 'bench_contact: the ordering is amd or metis'
+      end select
+      call s%analyse(map%neq, xadj, adjncy, st)
+      call check('analyse')
+      ! MUMPS's analysis now (else at the first factorization), timed with the pattern's set-up
+      call s%run_analysis(st)
+      call check('analysis')
+      t_or = s%ordering_seconds
+      ord = 'amd'
+      if (s%ordering_of_analysis() == ORDERING_METIS) ord = 'metis'
+   end select
+#endif
    t_an = elapsed(t0)
    call s%zero()
    allocate (diag(map%neq))
@@ -112,6 +142,9 @@ program bench_contact
       call s%factorize_schur(ceq, dense%s, st)
       call check('factorize_schur')
       t_sc = elapsed(t0)
+      t_sa = s%analysis_seconds
+      t_so2 = s%ordering_seconds
+      nnzs = s%stats%nnz_factor
       call cpu_time(t0)
       call s%schur_condense(b, g, st)
       call check('schur_condense')
@@ -158,8 +191,9 @@ program bench_contact
 #else
    stop 'bench_contact: built without MUMPS'
 #endif
-   write (*, '(i0,",",i0,",",i0,12(",",es12.5),",",f0.1,",",es10.3)') map%neq, nc, nnzf, t_an, t_as, t_fa, t_so, &
-      t_sc, t_co, t_ex, t_df, t_ds, t_ps, t_pf, t_pv, peak_rss_mb(), maxval(abs(y - x))/maxval(abs(x))
+   write (*, '(i0,",",i0,",",i0,12(",",es12.5),",",f0.1,",",es10.3,",",a,3(",",es12.5),",",i0)') map%neq, nc, &
+      nnzf, t_an, t_as, t_fa, t_so, t_sc, t_co, t_ex, t_df, t_ds, t_ps, t_pf, t_pv, peak_rss_mb(), &
+      maxval(abs(y - x))/maxval(abs(x)), trim(ord), t_or, t_sa, t_so2, nnzs
 
 contains
 

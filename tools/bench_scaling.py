@@ -2,7 +2,7 @@
 """Scaling benchmark: the rough punch on a foundation from 1e4 to 1e6 equations, every solution path.
 
     tools/bench_scaling.py [--sizes 1e4 3e4 ...] [--paths skyline:on mumps:on ...]
-                           [--spheres a5 a10 a20] [--no-linear] [--no-first]
+                           [--spheres a5 a10 a20] [--no-linear] [--no-first] [--orderings amd metis]
                            [--out DIR] [--generate-only] [--exe PATH] [--timeout S]
     tools/bench_scaling.py --report [--out DIR] [--plot FILE]
 
@@ -39,7 +39,11 @@ Unless --no-linear, every size is also measured by bench/bench_contact.F90 (targ
 bench_contact, built if needed) in the same run: one linear solve of the same mesh (MUMPS
 analysis, factorization of K_AB + K_ref, one back-substitution) and the parts of the Schur path
 (analysis + factorization with the Schur complement, condensation, expansion, dense Cholesky
-and solve of the 1 202 contact equations); OUT/linear.csv.
+and solve of the 1 202 contact equations); OUT/linear.csv.  --orderings runs bench_contact once per
+MUMPS ordering (amd: MUMPS's AMD; metis: METIS's nested dissection given as a user ordering), one
+after the other on the same mesh, so that the orderings are compared in one sitting; the report then
+adds a table of analysis, ordering, factorization and Schur set-up times per ordering.  `--paths`
+with no path runs bench_contact alone.
 
 --spheres adds the rough sphere of example 5.2 (P = 200 N, c_n = 0.8, NEWTON, 5 increments) with
 contact spacing a_H/5, a_H/10, a_H/20 (tools/k2d/examples.py), run along the same paths.
@@ -253,21 +257,26 @@ def run(exe, deck, h5, solver, timeout):
     return rc, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024.0
 
 
-def bench_contact(build, deck):
+def bench_contact(build, deck, ordering=""):
     """bench_contact's CSV line for a deck, as a dict (None on failure)."""
     exe = os.path.join(build, "bench_contact")
-    r = subprocess.run([exe, deck], capture_output=True, text=True, cwd=os.path.dirname(deck))
+    r = subprocess.run([exe, deck] + ([ordering] if ordering else []), capture_output=True, text=True,
+                       cwd=os.path.dirname(deck))
     line = r.stdout.strip().splitlines()[-1] if r.stdout.strip() else ""
     parts = line.split(",")
     if r.returncode != 0 or len(parts) != len(LINEAR_FIELDS):
         print(f"bench_contact failed on {deck}:\n{r.stdout[-2000:]}\n{r.stderr[-2000:]}", flush=True)
         return None
-    return {k: (int(v) if k in ("neq", "nc", "nnz_factor") else float(v)) for k, v in zip(LINEAR_FIELDS, parts)}
+    return {k: (int(v) if k in ("neq", "nc", "nnz_factor", "nnz_factor_schur") else v if k == "ordering"
+                else float(v)) for k, v in zip(LINEAR_FIELDS, parts)}
 
 
 LINEAR_FIELDS = ["neq", "nc", "nnz_factor", "analyse_s", "assembly_s", "factorize_s", "solve_s", "schur_s",
                  "condense_s", "expand_s", "dense_factorize_s", "dense_solve_s", "proj_setup_s", "proj_factorize_s",
-                 "proj_solve_s", "peak_rss_mb", "max_rel_diff"]
+                 "proj_solve_s", "peak_rss_mb", "max_rel_diff", "ordering", "ordering_s", "schur_analyse_s",
+                 "schur_ordering_s", "nnz_factor_schur"]
+# the ordering of the solver's default (mumps_solver ORDERING_DEFAULT): the main tables use its rows
+DEFAULT_ORDERING = "amd"
 SPHERES = {"a5": 5.0, "a10": 10.0, "a20": 20.0}
 
 
@@ -311,7 +320,9 @@ def run_paths(exe, label, dofs, decks, paths, out, timeout, rows, first_decks=No
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--sizes", nargs="*", default=SIZES, choices=SIZES)
-    p.add_argument("--paths", nargs="+", default=PATHS, help="SOLVER:ON|OFF (default: all six)")
+    p.add_argument("--paths", nargs="*", default=PATHS, help="SOLVER:ON|OFF (default: all six; none: bench_contact only)")
+    p.add_argument("--orderings", nargs="+", default=[""], choices=["amd", "metis"],
+                   help="MUMPS orderings for bench_contact (default: the solver's)")
     p.add_argument("--spheres", nargs="*", default=[], choices=sorted(SPHERES))
     p.add_argument("--no-linear", action="store_true", help="skip bench_contact (one linear solve, Schur parts)")
     p.add_argument("--no-first", action="store_true", help="skip the runs cut to the first increment")
@@ -360,8 +371,8 @@ def main():
               flush=True)
         if args.generate_only:
             continue
-        if build:
-            lin = bench_contact(build, decks["ON"])
+        for ordering in args.orderings if build else []:
+            lin = bench_contact(build, decks["ON"], ordering)
             if lin:
                 lin["size"] = size
                 lin["dofs"] = neq_mesh
@@ -369,8 +380,8 @@ def main():
                 print(f"{size:>5s} {neq_mesh:9d} one linear solve: factorize {lin['factorize_s']:.3f} s + solve "
                       f"{lin['solve_s']:.4f} s (analysis {lin['analyse_s']:.3f} s); Schur set-up {lin['schur_s']:.3f} s, "
                       f"condense {lin['condense_s']:.4f} s, expand {lin['expand_s']:.4f} s, dense Cholesky "
-                      f"{lin['dense_factorize_s']:.4f} s, in the springs' coordinates {lin['proj_factorize_s']:.4f} s",
-                      flush=True)
+                      f"{lin['dense_factorize_s']:.4f} s, in the springs' coordinates {lin['proj_factorize_s']:.4f} s "
+                      f"[{lin['ordering']}]", flush=True)
         run_paths(exe, size, neq_mesh, decks, args.paths, args.out, args.timeout, rows,
                   None if args.no_first else firsts)
     for tag in args.spheres:
@@ -386,7 +397,7 @@ def main():
                   args.append)
     if linear:
         write_csv(os.path.join(args.out, "linear.csv"), linear, ["size", "dofs"] + LINEAR_FIELDS, args.append)
-    return 0 if all(r["rc"] == 0 for r in rows) else 1
+    return 0 if all(r["rc"] == 0 for r in rows) and (linear or args.no_linear or args.generate_only) else 1
 
 
 def write_csv(path, rows, fields, append):
@@ -405,12 +416,52 @@ def slope(x, y):
     return float(np.polyfit(x, y, 1)[0]) if len(x) >= 2 else float("nan")
 
 
+def orderings_table(lrows):
+    """Analysis, ordering, factorization and Schur set-up per MUMPS ordering, when several were run."""
+    by = {}
+    for r in lrows:
+        if r.get("ordering"):
+            by.setdefault(r["ordering"], {})[r["size"]] = r
+    if len(by) < 2:
+        return
+    print()
+    print("| DOFs | ordering | analysis [s] | of which METIS [s] | factorize [s] | factor entries "
+          "| Schur set-up [s] | of which analysis [s] | of which METIS [s] | factor entries (Schur) |")
+    print("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for size in SIZES:
+        for o in sorted(by):
+            r = by[o].get(size)
+            if r is None:
+                continue
+            print(f"| {int(r['dofs']):,} | {o} | {float(r['analyse_s']):.3f} | {float(r['ordering_s']):.3f} | "
+                  f"{float(r['factorize_s']):.3f} | {int(r['nnz_factor']):,} | {float(r['schur_s']):.3f} | "
+                  f"{float(r['schur_analyse_s']):.3f} | {float(r['schur_ordering_s']):.3f} | "
+                  f"{int(r['nnz_factor_schur']):,} |")
+    print()
+    print("Fitted exponents per ordering (least squares of log t against log DOFs):")
+    for o in sorted(by):
+        sz = [s for s in SIZES if s in by[o]]
+        d = [int(by[o][s]["dofs"]) for s in sz]
+
+        def f(key, sz=sz, o=o):
+            return [float(by[o][s][key]) for s in sz]
+        an_fa = [a + b for a, b in zip(f("analyse_s"), f("factorize_s"))]
+        sc_fa = [a / b for a, b in zip(f("schur_s"), f("factorize_s"))]
+        print(f"  {o}: factorization {slope(d, f('factorize_s')):.2f}, analysis + factorization "
+              f"{slope(d, an_fa):.2f}, Schur set-up {slope(d, f('schur_s')):.2f}, analysis {slope(d, f('analyse_s')):.2f}; "
+              f"Schur set-up / factorization " + ", ".join(f"{x:.2f}" for x in sc_fa))
+
+
 def report(out, plot):
     """The tables of docs/performance.md and the log-log plot, from OUT's CSV files."""
-    with open(os.path.join(out, "scaling.csv")) as f:
-        runs = list(csv.DictReader(f))
+    runs = []
+    if os.path.exists(os.path.join(out, "scaling.csv")):
+        with open(os.path.join(out, "scaling.csv")) as f:
+            runs = list(csv.DictReader(f))
     with open(os.path.join(out, "linear.csv")) as f:
-        lin = {r["size"]: r for r in csv.DictReader(f)}
+        lrows = list(csv.DictReader(f))
+    # the main tables: the default ordering's figures (files of earlier runs have no ordering column)
+    lin = {r["size"]: r for r in lrows if r.get("ordering") in (None, "", DEFAULT_ORDERING)}
     sizes = [s for s in SIZES if s in lin]
     print("| DOFs | one linear solve [s] (factorize + solve) | back-substitution [s] | Schur set-up [s] "
           "| Schur set-up / factorize | Schur set-up / (analysis + factorize) | dense Cholesky n_c [s] "
@@ -461,6 +512,7 @@ def report(out, plot):
             print(f"  {path}: total {slope(d, [q[1] for q in pts]):.2f}, set-up + 1st increment "
                   f"{slope(d, [q[2] for q in pts]):.2f}, later increment {slope(d, [q[3] for q in pts]):.2f}, "
                   f"peak memory {slope(d, [q[4] for q in pts]):.2f}")
+    orderings_table(lrows)
     try:
         import matplotlib
         matplotlib.use("Agg")

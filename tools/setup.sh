@@ -4,7 +4,7 @@
 
 K2D_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 K2D_PACKAGES="gfortran gcc make cmake liblapack-dev libblas-dev libopenblas-dev libsuitesparse-dev \
-libmumps-seq-dev libhdf5-dev hdf5-tools gmsh python3 python3-h5py python3-numpy python3-matplotlib"
+libmumps-seq-dev libmetis-dev libhdf5-dev hdf5-tools gmsh python3 python3-h5py python3-numpy python3-matplotlib"
 # K2D_MPI=1: the MPI build instead (cmake -DKONTAKT2D_MPI=ON, in build-mpi/; docs/parallel.md),
 # with the MPI MUMPS and OpenMPI.
 K2D_MPI=${K2D_MPI:-0}

@@ -27,12 +27,17 @@ module full_system
 
 contains
 
-   !> Nothing to prepare: the base K_AB is in the solver.
+   !> Nothing to prepare: the base K_AB is in the solver.  With contact
+   !! pairs the solver is told that it will factorize the pattern once per
+   !! set of springs (the MUMPS solver may then order it by METIS).
    subroutine full_prepare(this, kref, status)
       class(full_system_t), intent(inout) :: this
       real(dp), intent(in) :: kref(:, :, :)
       type(status_t), intent(inout) :: status
       this%condensed = .false.
+      if (allocated(this%solver) .and. allocated(this%peq)) then
+         if (size(this%peq, 2) > 0) call this%solver%expect_refactorizations()
+      end if
       associate (unused => kref, unused2 => status)
       end associate
    end subroutine full_prepare
@@ -87,8 +92,9 @@ contains
       class(full_system_t), intent(in) :: this
       character(len=:), allocatable :: s
       s = ''
-      associate (unused => this)
-      end associate
+      if (.not. allocated(this%solver)) return
+      s = this%solver%ordering_note()
+      if (len(s) > 0) s = 'Ordering     : '//s//' of the sparse factorization'
    end function full_describe
 
    pure function full_memory(this) result(bytes)

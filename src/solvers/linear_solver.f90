@@ -67,6 +67,8 @@ module linear_solver
       procedure(zero_i), deferred :: free
       procedure(name_i), deferred :: name
       procedure :: failed_equation
+      procedure :: expect_refactorizations
+      procedure :: ordering_note
       procedure :: reset_common
       procedure :: check_element
       procedure :: ready_to_solve
@@ -118,6 +120,26 @@ module linear_solver
    end interface
 
 contains
+
+   !> Hint, after `analyse` and before the first factorization, that the
+   !! pattern will be factorized many times (a new set of springs each time),
+   !! so that a costlier ordering that makes each factorization cheaper may
+   !! pay.  No effect by default; the MUMPS solver chooses its ordering by it.
+   subroutine expect_refactorizations(this)
+      class(linear_solver_t), intent(inout) :: this
+      associate (unused => this)
+      end associate
+   end subroutine expect_refactorizations
+
+   !> The fill-reducing ordering of the last analysis in words, for the
+   !! listing; empty when the solver has no choice of ordering to tell.
+   function ordering_note(this) result(s)
+      class(linear_solver_t), intent(in) :: this
+      character(len=:), allocatable :: s
+      s = ''
+      associate (unused => this)
+      end associate
+   end function ordering_note
 
    !> Equation at which the last factorization failed (0 if none or unknown).
    pure integer function failed_equation(this) result(eq)

@@ -216,7 +216,12 @@ contains
       class(mumps_schur_system_t), intent(in) :: this
       character(len=:), allocatable :: s
       s = 'Condensed    : bodies condensed onto '//itoa(this%nc)// &
-          ' contact equations (MUMPS Schur complement of one sparse factorization)'
+          ' contact equations (MUMPS Schur complement of one sparse factorization'
+      select type (sv => this%solver)
+      type is (mumps_solver_t)
+         if (len(sv%ordering_note()) > 0) s = s//', '//sv%ordering_note()
+      end select
+      s = s//')'
    end function schur_describe
 
    !> S and the factors of the contact equations, and the vectors.

@@ -8,12 +8,26 @@
 !! pattern is built once by `analyse`; element matrices are scattered
 !! straight into A, locating (i, j) by a binary search of column j's rows.
 !!
-!! Life cycle.  `analyse` runs MUMPS's analysis (JOB = 1) on the pattern
-!! alone: the fill-reducing ordering (nested dissection by PORD, ICNTL(7) =
-!! 4, by default), the elimination tree and the memory estimates, kept for as
-!! long as the pattern holds, i.e. across increments.  `factorize` runs the
-!! numerical factorization (JOB = 2) on the current values, `solve` (JOB = 3)
-!! any number of times per factorization.
+!! Life cycle.  `analyse` takes the pattern and starts MUMPS; MUMPS's
+!! analysis of the pattern (JOB = 1: the fill-reducing ordering, the
+!! elimination tree and the memory estimates) runs at the first `factorize`
+!! (or earlier by `run_analysis`) and is kept for as long as the pattern
+!! holds, i.e. across increments.  It is put off so that a factorization with
+!! a Schur complement (`factorize_schur`, whose variables the analysis must
+!! know) analyses the pattern once, not once without and once with them.
+!! `factorize` runs the numerical factorization (JOB = 2) on the current
+!! values, `solve` (JOB = 3) any number of times per factorization.
+!!
+!! Ordering.  AMD (MUMPS's own, ICNTL(7) = 0), or METIS's nested dissection
+!! given as a user ordering (ICNTL(7) = 1, PERM_IN from `metis_ordering`;
+!! Debian's MUMPS is not linked with METIS), or MUMPS's SCOTCH and PORD.
+!! With a Schur complement MUMPS ignores ICNTL(7) = 0, 3, 4 (it orders by
+!! AMD) but takes a user ordering (INFOG(7) = 1 after the analysis, checked
+!! by the unit tests).  The Schur variables are given the last places, in
+!! their order (MUMPS keeps them out of the elimination: last is where they
+!! belong), and METIS orders the graph of the other equations.  Without METIS in the build the METIS
+!! ordering falls back to AMD (`ordering_note` says so).  Which ordering is
+!! the default, and why, is said at ORDERING_DEFAULT.
 !!
 !! Why SYM = 2 and not SYM = 1.  The systems are symmetric positive definite
 !! when the model is restrained, and that is exactly what must be checked:
@@ -52,27 +66,39 @@ module mumps_solver
    use strings, only: itoa, rtoa
    use sorting, only: insertion_sort
    use linear_solver, only: linear_solver_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
+   use metis_ordering, only: metis_available, nested_dissection
    use mumps_instance, only: mumps_instance_t, mumps_error_text, mumps_size, JOB_ANALYSE, JOB_FACTORIZE, &
                              JOB_SOLVE
    implicit none
    private
 
    public :: mumps_solver_t
-   public :: ORDERING_AMD, ORDERING_SCOTCH, ORDERING_PORD, ORDERING_AUTO
+   public :: ORDERING_AMD, ORDERING_SCOTCH, ORDERING_PORD, ORDERING_AUTO, ORDERING_METIS, ORDERING_DEFAULT
 
-   !> Fill-reducing orderings (ICNTL(7)).  AMD is the default: deterministic,
-   !! cheap, and on the plane meshes measured as good as the nested
-   !! dissections Debian's MUMPS offers (SCOTCH, PORD; it has no METIS): on a
-   !! plane-strain Q4 block of 5e5 equations the factorization flops were
-   !! 2.19e10 (AMD), 2.27e10 (PORD), 2.11e10 (METIS given as PERM_IN), the
-   !! factorization times equal within the noise, and AMD's analysis the
-   !! fastest (0.26 s against 0.8 s for PORD and 1.9 s for METIS alone).
-   !! PORD stops the whole process (`exit`) on a graph it cannot split (a
-   !! dense one: "no valid number of stages in multisector", met here on a
-   !! 3-equation system), and SCOTCH's orderings differ from run to run
-   !! (threads), so that results would not be bit-reproducible: both are
-   !! available, not the default.
+   !> Fill-reducing orderings of MUMPS (ICNTL(7)).  AMD: deterministic and
+   !! the cheapest analysis (0.3 s at 3e5 equations), the default for one
+   !! factorization.  PORD stops the whole process (`exit`) on a graph it
+   !! cannot split (a dense one: "no valid number of stages in
+   !! multisector", met here on a 3-equation system), and SCOTCH's orderings
+   !! differ from run to run (threads), so that results would not be
+   !! bit-reproducible: both are available, never the default.
    integer, parameter :: ORDERING_AMD = 0, ORDERING_SCOTCH = 3, ORDERING_PORD = 4, ORDERING_AUTO = 7
+   !> METIS's nested dissection (`metis_ordering`) given to MUMPS as a user
+   !! ordering (ICNTL(7) = 1, PERM_IN); the value is MUMPS's INFOG(7) code
+   !! for METIS.
+   integer, parameter :: ORDERING_METIS = 5
+   !> The default ordering (the value of `ordering` until it is set): AMD,
+   !! but METIS when the pattern will be factorized many times
+   !! (`expect_refactorizations`, the full contact system) and has at least
+   !! METIS_MIN_NEQ equations.  METIS's analysis costs several times AMD's
+   !! (1.5 s against 0.3 s at 3e5 equations) and saves 16-35 % of each
+   !! factorization from 3e4 equations on: it pays back after 3 to 9
+   !! factorizations, never in one (the Schur path, a model without contact).
+   !! Measurements: docs/performance.md, "Orderings".
+   integer, parameter :: ORDERING_DEFAULT = -1
+   !> Smallest model ordered by METIS by default (below it the factorizations
+   !! measured no faster with METIS).
+   integer, parameter :: METIS_MIN_NEQ = 20000
 
    !> Workspace errors that a larger relaxation ICNTL(14) cures.
    integer, parameter :: WORKSPACE_ERRORS(4) = [-8, -9, -17, -20]
@@ -84,15 +110,25 @@ module mumps_solver
       !> Relative pivot threshold, the skyline solver's: a null pivot row of
       !! the unit-diagonal scaled matrix has no entry above it.
       real(dp) :: pivot_tol = 1.0e-12_dp
-      !> Fill-reducing ordering, ICNTL(7) (set before `analyse`).
-      integer :: ordering = ORDERING_AMD
+      !> Fill-reducing ordering, ICNTL(7), or ORDERING_METIS (set before
+      !! the first factorization).
+      integer :: ordering = ORDERING_DEFAULT
+      !> Smallest pattern the default ordering gives to METIS (see
+      !! ORDERING_DEFAULT).
+      integer :: metis_min_neq = METIS_MIN_NEQ
+      !> CPU seconds of the last METIS ordering (0 when none ran).
+      real(dp) :: ordering_seconds = 0.0_dp
+      !> CPU seconds of the last analysis, ordering included.
+      real(dp) :: analysis_seconds = 0.0_dp
       type(mumps_instance_t), private :: mumps
       integer, allocatable, private :: cp(:)          ! (0:neq) column pointers into IRN/JCN/A
       real(dp), allocatable, private :: base(:)       ! stored copy of K_AB
       integer, private :: analysis_count = 0
       integer, private :: ordering_used = -1
       integer, private :: nschur = 0                  ! Schur variables (0: none)
-      logical, private :: schur_analysed = .false.    ! the analysis holds them
+      logical, private :: analysed = .false.          ! MUMPS's analysis holds for the pattern (and Schur variables)
+      logical, private :: metis_missing = .false.     ! METIS asked for, not built in: AMD used
+      logical, private :: many = .false.              ! many factorizations of the pattern expected
    contains
       procedure :: analyse => mumps_analyse
       procedure :: zero => mumps_zero
@@ -106,6 +142,9 @@ module mumps_solver
       procedure :: nnz => mumps_nnz
       procedure :: symbolic_analyses => mumps_symbolic_analyses
       procedure :: ordering_of_analysis => mumps_ordering_of_analysis
+      procedure :: ordering_note => mumps_ordering_note
+      procedure :: run_analysis => mumps_run_analysis
+      procedure :: expect_refactorizations => mumps_expect_refactorizations
       procedure :: factorize_schur => mumps_factorize_schur
       procedure :: schur_condense => mumps_schur_condense
       procedure :: schur_expand => mumps_schur_expand
@@ -114,11 +153,12 @@ module mumps_solver
 
 contains
 
-   !> Pattern of the upper triangle from the CSR equation graph, then MUMPS's
-   !! analysis of it.
+   !> Pattern of the upper triangle from the CSR equation graph, and MUMPS
+   !! started on it; MUMPS's analysis follows at the first factorization
+   !! (`run_analysis`).
    !!
    !! The graph may list each coupling once (either triangle) or twice.
-   !! STAT_SOLVER for an invalid graph or a failed analysis (MUMPS's reason).
+   !! STAT_SOLVER for an invalid graph or when MUMPS cannot start.
    subroutine mumps_analyse(this, neq, xadj, adjncy, status)
       class(mumps_solver_t), intent(inout) :: this
       integer, intent(in) :: neq          !! number of equations
@@ -157,26 +197,151 @@ contains
          id%icntl(5) = 0                 ! assembled matrix
          id%icntl(18) = 0                ! centralized on the host
          id%icntl(6) = 0                 ! no matching: the analysis sees the pattern only
-         id%icntl(7) = this%ordering
          id%icntl(8) = -1                ! scaling given by us: a unit diagonal
          id%icntl(12) = 1                ! plain ordering of the symmetric pattern
          id%icntl(13) = 1                ! root front not on ScaLAPACK: null pivots detected there too
          id%icntl(24) = 1                ! null pivot row detection ...
          id%cntl(3) = -this%pivot_tol    ! ... with an absolute threshold on the scaled matrix
          id%icntl(28) = 1                ! sequential analysis
+      end associate
+      this%analysed = .false.
+      this%state = ST_ASSEMBLING
+      call update_memory(this)
+   end subroutine mumps_analyse
+
+   !> MUMPS's analysis (JOB = 1) of the pattern, with the Schur variables of
+   !! `factorize_schur` if any, in the ordering `ordering`; the first
+   !! factorization runs it if it has not run.  STAT_SOLVER when it fails
+   !! (MUMPS's reason).
+   subroutine mumps_run_analysis(this, status)
+      class(mumps_solver_t), intent(inout) :: this
+      type(status_t), intent(inout) :: status   !! set only on failure
+      real(dp) :: t0, t1
+      if (this%state == ST_EMPTY) then
+         call status%set(STAT_SOLVER, 'mumps solver: run_analysis called before analyse')
+         return
+      end if
+      if (this%neq == 0 .or. .not. this%mumps%started()) return
+      call cpu_time(t0)
+      associate (id => this%mumps%id)
+         this%metis_missing = .false.
+         this%ordering_seconds = 0.0_dp
+         if (associated(id%perm_in)) deallocate (id%perm_in)
+         if (effective_ordering(this) == ORDERING_METIS) then
+            if (metis_available()) then
+               allocate (id%perm_in(this%neq))
+               call metis_perm_in(this, id%perm_in, status)
+               if (.not. status%ok()) return
+               id%icntl(7) = 1
+            else
+               this%metis_missing = .true.
+               id%icntl(7) = ORDERING_AMD
+            end if
+         else
+            id%icntl(7) = effective_ordering(this)
+         end if
          call this%mumps%run(JOB_ANALYSE)
          if (id%infog(1) < 0) then
             call status%set(STAT_SOLVER, 'mumps solver: analysis failed: '// &
                             mumps_error_text(id%infog(1), id%infog(2)))
-            call this%free()
             return
          end if
          this%ordering_used = id%infog(7)
+         if (this%ordering_used == 1 .and. effective_ordering(this) == ORDERING_METIS) &
+            this%ordering_used = ORDERING_METIS
       end associate
       this%analysis_count = this%analysis_count + 1
-      this%state = ST_ASSEMBLING
+      this%analysed = .true.
       call update_memory(this)
-   end subroutine mumps_analyse
+      call cpu_time(t1)
+      this%analysis_seconds = t1 - t0
+   end subroutine mumps_run_analysis
+
+   !> The ordering the next analysis is to use: `ordering`, or for the
+   !! default METIS when many factorizations of a large enough pattern are
+   !! expected, else AMD.  (METIS without METIS in the build: AMD, noted.)
+   pure integer function effective_ordering(this) result(k)
+      class(mumps_solver_t), intent(in) :: this
+      k = this%ordering
+      if (k /= ORDERING_DEFAULT) return
+      k = ORDERING_AMD
+      if (this%many .and. this%neq >= this%metis_min_neq) k = ORDERING_METIS
+   end function effective_ordering
+
+   !> Many factorizations of this pattern are to come (see ORDERING_DEFAULT).
+   subroutine mumps_expect_refactorizations(this)
+      class(mumps_solver_t), intent(inout) :: this
+      this%many = .true.
+   end subroutine mumps_expect_refactorizations
+
+   !> PERM_IN (the place of every equation in the pivot order) from METIS's
+   !! nested dissection: of the whole pattern, or, with Schur variables, of
+   !! the pattern of the other equations, the Schur variables placed last in
+   !! the order of LISTVAR_SCHUR (they are not eliminated).  Times the
+   !! ordering (ordering_seconds).
+   subroutine metis_perm_in(this, perm_in, status)
+      class(mumps_solver_t), intent(inout) :: this
+      integer, intent(out) :: perm_in(:)        !! (neq)
+      type(status_t), intent(inout) :: status
+      integer, allocatable :: sub(:), xadj(:), adjncy(:), place(:)
+      integer :: n, nsub, i, j, p, k
+      real(dp) :: t0, t1
+      call cpu_time(t0)
+      n = this%neq
+      ! sub(i): the vertex of equation i in the graph METIS orders, 0 for a Schur variable
+      allocate (sub(n))
+      sub = 1
+      if (this%nschur > 0) sub(this%mumps%id%listvar_schur(1:this%nschur)) = 0
+      nsub = 0
+      do i = 1, n
+         if (sub(i) > 0) then
+            nsub = nsub + 1
+            sub(i) = nsub
+         end if
+      end do
+      ! the graph of the upper pattern between such equations, both ends, no diagonal
+      allocate (xadj(nsub + 1))
+      xadj = 0
+      do j = 1, n
+         if (sub(j) == 0) cycle
+         do p = this%cp(j - 1) + 1, this%cp(j)
+            i = this%mumps%id%irn(p)
+            if (i == j .or. sub(i) == 0) cycle
+            xadj(sub(i) + 1) = xadj(sub(i) + 1) + 1
+            xadj(sub(j) + 1) = xadj(sub(j) + 1) + 1
+         end do
+      end do
+      xadj(1) = 1
+      do k = 1, nsub
+         xadj(k + 1) = xadj(k + 1) + xadj(k)
+      end do
+      allocate (adjncy(max(xadj(nsub + 1) - 1, 1)), place(nsub + 1))
+      place(1:nsub) = xadj(1:nsub)
+      do j = 1, n
+         if (sub(j) == 0) cycle
+         do p = this%cp(j - 1) + 1, this%cp(j)
+            i = this%mumps%id%irn(p)
+            if (i == j .or. sub(i) == 0) cycle
+            adjncy(place(sub(i))) = sub(j)
+            place(sub(i)) = place(sub(i)) + 1
+            adjncy(place(sub(j))) = sub(i)
+            place(sub(j)) = place(sub(j)) + 1
+         end do
+      end do
+      call nested_dissection(nsub, xadj, adjncy, place, status)
+      if (.not. status%ok()) then
+         status%message = 'mumps solver: METIS ordering: '//status%message
+         return
+      end if
+      do i = 1, n
+         if (sub(i) > 0) perm_in(i) = place(sub(i))
+      end do
+      do k = 1, this%nschur
+         perm_in(this%mumps%id%listvar_schur(k)) = nsub + k
+      end do
+      call cpu_time(t1)
+      this%ordering_seconds = t1 - t0
+   end subroutine metis_perm_in
 
    !> Upper-triangle pattern (column pointers, sorted rows, diagonal last)
    !! of a CSR equation graph; checks the graph.
@@ -426,6 +591,15 @@ contains
          call succeed(this)
          return
       end if
+      if (.not. this%analysed) then
+         call this%run_analysis(status)
+         if (.not. status%ok()) then
+            this%bad_eq = 0
+            this%fail_msg = status%message
+            this%state = ST_FAILED
+            return
+         end if
+      end if
       associate (id => this%mumps%id)
          if (.not. all(ieee_is_finite(id%a))) then
             call fail(this, status, STAT_SOLVER, 'mumps solver: the assembled matrix holds NaN or Inf', 0)
@@ -548,6 +722,7 @@ contains
             if (associated(id%listvar_schur)) deallocate (id%listvar_schur)
             if (associated(id%schur)) deallocate (id%schur)
             if (associated(id%redrhs)) deallocate (id%redrhs)
+            if (associated(id%perm_in)) deallocate (id%perm_in)
             id%rowsca => null()
          end associate
          call this%mumps%finish()
@@ -558,7 +733,10 @@ contains
       this%analysis_count = 0
       this%ordering_used = -1
       this%nschur = 0
-      this%schur_analysed = .false.
+      this%analysed = .false.
+      this%metis_missing = .false.
+      this%many = .false.
+      this%ordering_seconds = 0.0_dp
    end subroutine mumps_free
 
    !> Release MUMPS's data when the solver goes out of scope.
@@ -589,11 +767,44 @@ contains
    end function mumps_symbolic_analyses
 
    !> Ordering MUMPS used in the last analysis (INFOG(7): 0 AMD, 2 AMF,
-   !! 3 SCOTCH, 4 PORD, 5 METIS, 6 QAMD); -1 before an analysis.
+   !! 3 SCOTCH, 4 PORD, 6 QAMD; ORDERING_METIS = 5 for METIS's given as the
+   !! user ordering); -1 before an analysis (the first factorization).
    pure integer function mumps_ordering_of_analysis(this) result(n)
       class(mumps_solver_t), intent(in) :: this
       n = this%ordering_used
    end function mumps_ordering_of_analysis
+
+   !> The ordering in words, for the listing: that of the last analysis, or
+   !! before the first one the ordering it will use; it says when METIS was
+   !! asked for and the build has none.  Empty before `analyse`.
+   function mumps_ordering_note(this) result(s)
+      class(mumps_solver_t), intent(in) :: this
+      character(len=:), allocatable :: s
+      integer :: k
+      logical :: missing
+      s = ''
+      if (this%state == ST_EMPTY) return
+      k = this%ordering_used
+      missing = this%metis_missing
+      if (.not. this%analysed) then
+         k = effective_ordering(this)
+         missing = k == ORDERING_METIS .and. .not. metis_available()
+         if (missing) k = ORDERING_AMD
+      end if
+      select case (k)
+      case (ORDERING_AMD)
+         s = 'AMD ordering'
+      case (ORDERING_METIS)
+         s = 'METIS nested-dissection ordering'
+      case (ORDERING_SCOTCH)
+         s = 'SCOTCH ordering'
+      case (ORDERING_PORD)
+         s = 'PORD ordering'
+      case default
+         s = 'MUMPS ordering '//itoa(k)
+      end select
+      if (missing) s = s//' (METIS would be used: this build has no METIS)'
+   end function mumps_ordering_note
 
    !> Factorize the assembled values with the equations `vars` kept out of
    !! the elimination, and return their dense Schur complement
@@ -603,9 +814,9 @@ contains
    !! from the factorization itself (MUMPS's Schur option: ICNTL(19) = 1,
    !! SIZE_SCHUR, LISTVAR_SCHUR; centralized on the host).  Only K_bb is
    !! factorized, with the tests of `factorize` (its null pivots are named);
-   !! the first call analyses the pattern again with the Schur variables (the
-   !! analysis of `analyse` knows nothing of them), later calls with the same
-   !! variables reuse that analysis.  MUMPS returns one triangle of the
+   !! MUMPS's analysis runs with the Schur variables at the first call (the
+   !! only analysis when no plain factorization came before), later calls with
+   !! the same variables reuse it.  MUMPS returns one triangle of the
    !! symmetric complement (the other holds no valid data): `s` is made whole
    !! from it.  MUMPS computes the complement of the matrix as scaled by
    !! `factorize` (D^-1/2 K D^-1/2); `s` is scaled back.  After this call the
@@ -637,25 +848,22 @@ contains
             if (associated(id%redrhs)) deallocate (id%redrhs)
             allocate (id%listvar_schur(nc), id%schur(int(nc, i8)*int(nc, i8)), id%redrhs(nc))
             this%nschur = nc
-            this%schur_analysed = .false.
-         else if (any(id%listvar_schur /= vars)) then
-            this%schur_analysed = .false.
+            this%analysed = .false.
+         else if (any(id%listvar_schur /= vars) .or. id%icntl(19) /= 1) then
+            this%analysed = .false.
          end if
-         if (.not. this%schur_analysed) then
+         if (.not. this%analysed) then
             id%listvar_schur(:) = vars
             id%size_schur = nc
             id%icntl(19) = 1                 ! centralized Schur complement on the host
             id%schur_lld = nc
             id%lredrhs = nc
-            call this%mumps%run(JOB_ANALYSE)
-            if (id%infog(1) < 0) then
-               call fail(this, status, STAT_SOLVER, 'mumps solver: analysis with a Schur complement failed: '// &
-                         mumps_error_text(id%infog(1), id%infog(2)), 0)
+            call this%run_analysis(status)
+            if (.not. status%ok()) then
+               this%fail_msg = status%message
+               this%state = ST_FAILED
                return
             end if
-            this%ordering_used = id%infog(7)
-            this%analysis_count = this%analysis_count + 1
-            this%schur_analysed = .true.
          end if
       end associate
       call this%factorize(status)
