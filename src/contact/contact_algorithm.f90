@@ -925,6 +925,8 @@ contains
                if (md%touching) s%fn = pr%area*normal_pressure(s%un, ifc%cn, ifc%m, ifc%cn2, ifc%m2, &
                                                                md%on_unloading, md%ua, md%pa)
                s%ft = st%ft(j)
+               ! (and a tangential force within the friction limit of that force)
+               if (md%touching) s%ft = sign(min(abs(s%ft), s%mu*max(s%fn, 0.0_dp)), s%ft)
                s%on_unloading = md%on_unloading
                s%ua = md%ua
                s%pa = md%pa
