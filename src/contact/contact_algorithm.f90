@@ -94,6 +94,8 @@ module contact_algorithm
       logical :: closed = .false.
       logical :: newly_closed = .false.
       logical :: held = .false.           !! RETURN: held at the zero-force point instead of opening
+      logical :: touching = .false.       !! RETURN: at the zero-force point of its branch to round-off
+                                          !! (touching_band) in the last evaluation
       logical :: on_unloading = .false.
       real(dp) :: ua = 0.0_dp, pa = 0.0_dp
       integer :: tstate = TS_STICK
@@ -361,6 +363,19 @@ contains
       end if
    end function reload_from_zero
 
+   !> Half-width of the band around the zero-force point u_thr of a pair's
+   !! unloading branch in which the pair counts as touching at the point
+   !! (RETURN): |u - u_thr| <= eps^max(1, m2) (u_A - u_thr), eps = 1e-9.  On the
+   !! branch, (u - u_thr)/(u_A - u_thr) = (p/p_A)^m2, so within the band both the
+   !! law's force and the touching spring's, A p_A (u - u_thr)/(u_A - u_thr), are
+   !! at most eps A p_A: round-off of the pair's force scale, whatever m2.
+   pure real(dp) function touching_band(ifc, md) result(b)
+      type(interface_t), intent(in) :: ifc
+      type(pair_mode_t), intent(in) :: md
+      real(dp), parameter :: eps = 1.0e-9_dp
+      b = eps**max(1.0_dp, ifc%m2)*max(md%ua - md%uthr, 0.0_dp)
+   end function touching_band
+
    !> Closure at which an open pair closes: 0, or the residual closure after unloading.
    pure real(dp) function reclose_threshold(ifc, on_unloading, ua, pa) result(u)
       type(interface_t), intent(in) :: ifc
@@ -466,6 +481,7 @@ contains
             u = s%un + dun
             may_switch = md%nswitch < MAX_SWITCH
             held_now = .false.
+            md%touching = .false.
             fn = 0.0_dp
             ft = 0.0_dp
             if (pr%area <= 0.0_dp) then
@@ -513,7 +529,21 @@ contains
                else
                   fn = s%fn + md%kn*dun
                end if
-               if (returning .and. ifc%m2 > 1.0_dp .and. u <= md%uthr - utol .and. s%closed .and. s%fn > 0.0_dp .and. &
+               if (returning .and. md%on_unloading .and. s%closed .and. .not. md%newly_closed .and. &
+                   abs(u - md%uthr) <= touching_band(ifc, md)) then
+                  ! RETURN, at the zero-force point of its unloading branch to round-off, on either
+                  ! side (touching_band): touching there, on the secant from A to the point,
+                  ! K (u - u_thr), which the next solution settles; no change of state.  The
+                  ! branch's own stiffness is singular at the point (zero for m2 < 1, infinite
+                  ! for m2 > 1): Newton on it cannot carry the out-of-balance force that the
+                  ! round-off of a solution leaves on a body held by such pairs (1e-9 of the
+                  ! increment's force for a stiff block on soft pairs), and stalls.  The
+                  ! committed force is the law's at the final closure (commit_increment)
+                  md%touching = .true.
+                  held_now = .true.
+                  md%kn = pr%area*md%pa/max(md%ua - md%uthr, tiny(1.0_dp))
+                  fn = md%kn*(u - md%uthr)
+               else if (returning .and. ifc%m2 > 1.0_dp .and. u <= md%uthr - utol .and. s%closed .and. s%fn > 0.0_dp .and. &
                    .not. (md%held .or. md%newly_closed) .and. may_switch) then
                   ! RETURN, a loaded pair overshooting its zero-force point (a Newton step on a
                   ! concave branch, m2 > 1): once per increment it is held by the secant from
@@ -865,7 +895,7 @@ contains
       integer :: j
       real(dp) :: dutp, ft_old
       do j = 1, size(st%s)
-         associate (s => st%s(j), md => st%md(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+         associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             ft_old = s%ft
             s%un = s%un + st%dun(j)
             s%ut = s%ut + st%dut(j)
@@ -891,7 +921,12 @@ contains
                s%fn = st%fn(j)
                ! held at the zero-force point of a convex branch: no tension
                if (md%held .and. ifc%m2 <= 1.0_dp) s%fn = max(s%fn, 0.0_dp)
+               ! touching at the zero-force point: the law's force there (below round-off)
+               if (md%touching) s%fn = pr%area*normal_pressure(s%un, ifc%cn, ifc%m, ifc%cn2, ifc%m2, &
+                                                               md%on_unloading, md%ua, md%pa)
                s%ft = st%ft(j)
+               ! (and a tangential force within the friction limit of that force)
+               if (md%touching) s%ft = sign(min(abs(s%ft), s%mu*max(s%fn, 0.0_dp)), s%ft)
                s%on_unloading = md%on_unloading
                s%ua = md%ua
                s%pa = md%pa

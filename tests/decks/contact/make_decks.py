@@ -101,12 +101,14 @@ def rotation(name):
     d.write(os.path.join(HERE, name + ".dat"))
 
 
-def cycle(name, unload_to, autoinc=False, reload_to=1.5, scheme=None, hold=0, m=0.5, m2=None, cn2=0.5):
+def cycle(name, unload_to, autoinc=False, reload_to=1.5, scheme=None, hold=0, m=0.5, m2=None, cn2=0.5,
+          unload_steps=10):
     """Issue 16: a quasi-rigid block (E = 1e6, nu = 0) pressed on the fixed base through the rough
     law by a uniform pressure, loaded to p_max = 1 N/mm2 in 10 increments, unloaded to unload_to
     p_max in 10 and (reload_to > 0) reloaded to reload_to p_max in 10.  No SCHEME card: the default
     scheme.  The block is held in the normal direction by the contact alone.  hold: increments
-    that keep the load of the unloading's end before the reloading."""
+    that keep the load of the unloading's end before the reloading; unload_steps: the unloading's
+    increments."""
     d = block_on_base("Rough joint: load, unload to %g p_max%s" % (unload_to, ", reload" if reload_to else ""),
                       1, 4, E=1.0e6)
     d.comments = ["Issue 16: uniform pressure p on a quasi-rigid block; every pair follows the normal law:",
@@ -126,7 +128,9 @@ def cycle(name, unload_to, autoinc=False, reload_to=1.5, scheme=None, hold=0, m=
         d.comments[2] = "c_n = 1, m = %g, c_n2 = 0.5, m2 = %g (um, kgf/cm2).  No SCHEME card (the default)." % (m, m)
     if scheme:
         d.comments[2] = "c_n = 1, m = 0.5, c_n2 = 0.5, m2 = 0.5 (um, kgf/cm2).  SCHEME %s." % scheme
-    d.increments = [(1, [0.1]), (9, [1.0]), (10, [unload_to])] + ([(hold, [unload_to])] if hold else []) + \
+    if unload_steps != 10:
+        d.comments.insert(3, "Unloaded in %d increments (the last one's load factor exactly 0)." % unload_steps)
+    d.increments = [(1, [0.1]), (9, [1.0]), (unload_steps, [unload_to])] + ([(hold, [unload_to])] if hold else []) + \
         ([(10, [reload_to])] if reload_to else [])
     d.write(os.path.join(HERE, name + ".dat"))
 
@@ -188,4 +192,10 @@ if __name__ == "__main__":
     cycle("unload_zero_m12", 0.0, reload_to=0.0, m=1.2)
     cycle("unload_zero", 0.0, reload_to=0.0)
     cycle("unload_zero_autoinc", 0.0, autoinc=True, reload_to=0.0)
+    # unloaded to zero in 1000 (2000) increments: every pair ends at the zero-force point of its branch,
+    # whose stiffness is zero (m2 < 1) or infinite (m2 > 1) there; convex, and concave (valid with
+    # c_n2 = 0.5 and m = 1 for p_A up to 2^(1/0.2) = 32 kgf/cm2); checked by their .check files
+    cycle("unload_zero_fine_m05", 0.0, reload_to=0.0, unload_steps=1000)
+    cycle("unload_zero_fine_m08", 0.0, reload_to=0.0, m=0.8, unload_steps=1000)
+    cycle("unload_zero_fine_m12", 0.0, reload_to=0.0, m=1.0, m2=1.2, unload_steps=2000)
     tangential_cycle("tangential_cycle")
