@@ -55,9 +55,8 @@ module incremental
    use contact_fields, only: build_contact_fields, pair_spacing
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary
-   use progress_line, only: list_step_progress
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
-                      list_completed, list_failed, list_doubts, close_listing
+                      list_progress, list_completed, list_failed, list_doubts, close_listing
    implicit none
    private
    public :: run_options_t, run_result_t, run_analysis
@@ -642,7 +641,7 @@ contains
       res%completed = srec%step
       call system_clock(t1)
       if (.not. out%quiet) then
-         call list_step_progress(stdout, srec, res%body_fields_t, real(t1 - out%t0, dp)/real(out%rate, dp), res%fields)
+         call list_progress(stdout, srec, res%body_fields_t, real(t1 - out%t0, dp)/real(out%rate, dp), res%fields)
          flush (stdout)
       end if
    end subroutine finish_step

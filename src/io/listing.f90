@@ -332,7 +332,14 @@ contains
       type(body_fields_t), intent(in) :: body
       real(dp), intent(in) :: seconds                           !! elapsed since the start of the run
       type(contact_fields_t), intent(in), optional :: contact   !! used when step%contact
-      if (step%contact .and. present(contact)) then
+      if (step%contact .and. present(contact) .and. .not. step%full) then
+         ! a step whose body fields were skipped (neither written nor listed: step_record_t%full):
+         ! its contact figures, a dash for max |u|, which is not known for it
+         write (u, '(i6, f13.5, a12, i8, i6, i8, i4, es11.3, f12.3)') step%step, maxval(abs(step%lambda)), &
+            '-', count(contact%normal_state /= NS_OPEN), &
+            count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), step%solutions, &
+            step%repeats, step%residual, seconds
+      else if (step%contact .and. present(contact)) then
          write (u, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') step%step, maxval(abs(step%lambda)), &
             maxval(sqrt(body%disp(1, :)**2 + body%disp(2, :)**2)), count(contact%normal_state /= NS_OPEN), &
             count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), step%solutions, &
