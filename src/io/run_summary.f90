@@ -271,12 +271,15 @@ contains
          s = n(1)*m%coord(1, :) + n(2)*m%coord(2, :)
          tol = 1.0e-6_dp*max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), &
                              maxval(m%coord(2, :)) - minval(m%coord(2, :)))
+         ! the bodies (roots) of the A and B sides, then their nodes: O(npoin + npair)
          in_a = .false.
          in_b = .false.
          do j = 1, size(pairs)
-            in_a = in_a .or. body == body(pairs(j)%node_a)
-            if (pairs(j)%kind /= PAIR_RIGID) in_b = in_b .or. body == body(pairs(j)%node_b)
+            in_a(body(pairs(j)%node_a)) = .true.
+            if (pairs(j)%kind /= PAIR_RIGID) in_b(body(pairs(j)%node_b)) = .true.
          end do
+         in_a = in_a(body)
+         in_b = in_b(body)
          ext = maxval(s, mask=in_a)
          in_a = in_a .and. s >= ext - tol
          if (all(pairs%kind == PAIR_RIGID)) then
