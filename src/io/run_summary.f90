@@ -255,16 +255,19 @@ contains
       logical :: in_a(m%npoin), in_b(m%npoin)
       associate (pairs => m%contact%pairs)
          ! connected parts of the mesh (union-find over the elements)
+         ! (path halving keeps the trees flat: linear in practice; without it a mesh
+         ! numbered along its length grows chains as long as the mesh, time quadratic)
          body = [(j, j=1, m%npoin)]
          do ie = 1, m%nelem
-            ra = root(body, m%lnods(1, ie))
+            call find(body, m%lnods(1, ie), ra)
             do k = 2, m%nnode_e(ie)
-               r = root(body, m%lnods(k, ie))
+               call find(body, m%lnods(k, ie), r)
                if (r /= ra) body(r) = ra
             end do
          end do
          do j = 1, m%npoin
-            body(j) = root(body, j)
+            call find(body, j, r)
+            body(j) = r
          end do
          n = [sum(pairs%n(1)), sum(pairs%n(2))]
          n = n/max(norm2(n), tiny(1.0_dp))
@@ -295,13 +298,17 @@ contains
                  sum(n(1)*disp(1, :) + n(2)*disp(2, :), mask=in_a)/max(count(in_a), 1)
       end associate
    contains
-      pure integer function root(parent, i) result(r)
-         integer, intent(in) :: parent(:), i
+      !> Root of i's tree, halving the path on the way.
+      pure subroutine find(parent, i, r)
+         integer, intent(inout) :: parent(:)
+         integer, intent(in) :: i
+         integer, intent(out) :: r
          r = i
          do while (parent(r) /= r)
+            parent(r) = parent(parent(r))
             r = parent(r)
          end do
-      end function root
+      end subroutine find
    end function body_approach
 
    !> Unit names from the deck's unit convention: roughness constants in the
