@@ -42,8 +42,13 @@ TRACE = re.compile(r'Fortran runtime|Backtrace|SIGSEGV|SIGFPE|AddressSanitizer|r
                    r'internal error')
 
 
-def corpus_entries():
-    """(deck path, mesh name or '') of every deck of the corpus."""
+def corpus_entries(traps=False):
+    """(deck path, mesh name or '') of every deck of the corpus.  traps: the
+    program is a Debug build, which traps floating-point overflow where it
+    happens (-ffpe-trap): the decks made to overflow (tests/decks/fail/
+    *nonfinite*, *overflow*, which ctest runs in Release builds only for the
+    same reason) are left out, since their trap is the build's purpose, not a
+    crash of the program."""
     entries = []
     for top in ('inputs', 'tests'):
         for d, _, files in sorted(os.walk(os.path.join(ROOT, top))):
@@ -52,6 +57,8 @@ def corpus_entries():
                 continue
             for f in sorted(files):
                 if not f.endswith('.dat') or f.endswith('_fine.dat'):
+                    continue
+                if traps and re.search(r'nonfinite|overflow', f):
                     continue
                 path = os.path.join(d, f)
                 if os.path.getsize(path) > 200_000:
@@ -68,8 +75,17 @@ def corpus_entries():
     return entries
 
 
-def write_corpus(path):
-    entries = corpus_entries()
+def debug_build(build):
+    """Is the build directory a Debug build (CMAKE_BUILD_TYPE in its cache)?"""
+    try:
+        with open(os.path.join(build, 'CMakeCache.txt')) as fh:
+            return re.search(r'^CMAKE_BUILD_TYPE:\w+=Debug$', fh.read(), re.M) is not None
+    except OSError:
+        return False
+
+
+def write_corpus(path, traps=False):
+    entries = corpus_entries(traps)
     with open(path, 'w') as fh:
         for deck, mesh in entries:
             fh.write(deck + (' ' + mesh if mesh else '') + '\n')
@@ -186,7 +202,7 @@ def cmd_process(a):
     os.makedirs(a.findings, exist_ok=True)
     work = tempfile.mkdtemp(prefix='k2d_fuzzp_', dir=a.tmp)
     corpus = os.path.join(work, 'corpus.txt')
-    n = write_corpus(corpus)
+    n = write_corpus(corpus, traps=debug_build(a.build) and not a.program)
     counts = {}
     bad_kinds = ('crash', 'hang', 'no_location', 'nonfinite', 'result_after_input_error', 'no_result')
     t0 = time.time()
