@@ -34,6 +34,7 @@ from k2d.results import first_nonfinite  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 GMSH_CARD = re.compile(r'^GMSH\s+(\S+)', re.M)
+MAX_PROCESS_INCREMENTS = 1000   # longer decks are left out of the whole-program corpus
 LOCATED = re.compile(r'^\S+:\d+(:\d+)?: error \[[A-Z-]+\]: ', re.M)
 ERROR_LINE = re.compile(r'error \[[A-Z-]+\]: ')
 # one BLAS thread per run: the runs go in parallel (--jobs)
@@ -42,13 +43,34 @@ TRACE = re.compile(r'Fortran runtime|Backtrace|SIGSEGV|SIGFPE|AddressSanitizer|r
                    r'internal error')
 
 
-def corpus_entries(traps=False):
+def deck_increments(text):
+    """Increments of a deck's load history: the sum of the NSTEP fields (columns
+    1-5) of its INCREMENTS cards (1 without them); 0 when they cannot be read."""
+    m = re.search(r'^INCREMENTS[ \t]*$(.*?)^END', text, re.M | re.S)
+    if not m:
+        return 1
+    n = 0
+    for line in m.group(1).splitlines():
+        if not line.strip() or line.lstrip().startswith('#'):
+            continue
+        try:
+            n += int(line[:5])
+        except ValueError:
+            return 0
+    return n
+
+
+def corpus_entries(traps=False, process=False):
     """(deck path, mesh name or '') of every deck of the corpus.  traps: the
     program is a Debug build, which traps floating-point overflow where it
     happens (-ffpe-trap): the decks made to overflow (tests/decks/fail/
     *nonfinite*, *overflow*, which ctest runs in Release builds only for the
     same reason) are left out, since their trap is the build's purpose, not a
-    crash of the program."""
+    crash of the program.  process: the corpus of whole-program runs, which
+    leaves out the decks of more than MAX_PROCESS_INCREMENTS increments (long
+    analyses by design, e.g. tests/decks/options/many_increments.dat: 4 000
+    increments, 5 s of CPU alone, over the 60 s hang limit of wall time on a
+    loaded machine); the in-process readers take every deck."""
     entries = []
     for top in ('inputs', 'tests'):
         for d, _, files in sorted(os.walk(os.path.join(ROOT, top))):
@@ -65,6 +87,8 @@ def corpus_entries(traps=False):
                     continue
                 with open(path, 'rb') as fh:
                     text = fh.read().decode('latin-1')
+                if process and deck_increments(text) > MAX_PROCESS_INCREMENTS:
+                    continue
                 mesh = ''
                 mm = GMSH_CARD.search(text)
                 if mm:
@@ -84,8 +108,8 @@ def debug_build(build):
         return False
 
 
-def write_corpus(path, traps=False):
-    entries = corpus_entries(traps)
+def write_corpus(path, traps=False, process=False):
+    entries = corpus_entries(traps, process)
     with open(path, 'w') as fh:
         for deck, mesh in entries:
             fh.write(deck + (' ' + mesh if mesh else '') + '\n')
@@ -202,7 +226,7 @@ def cmd_process(a):
     os.makedirs(a.findings, exist_ok=True)
     work = tempfile.mkdtemp(prefix='k2d_fuzzp_', dir=a.tmp)
     corpus = os.path.join(work, 'corpus.txt')
-    n = write_corpus(corpus, traps=debug_build(a.build) and not a.program)
+    n = write_corpus(corpus, traps=debug_build(a.build) and not a.program, process=True)
     counts = {}
     bad_kinds = ('crash', 'hang', 'no_location', 'nonfinite', 'result_after_input_error', 'no_result')
     t0 = time.time()
