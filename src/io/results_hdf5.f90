@@ -146,7 +146,7 @@ contains
          call h5open_f(err)
          if (fail(err, 'initialise the HDF5 library')) return
          ! errors are reported by this module, not by HDF5's own error stack printer
-         call h5eset_auto_f(1, err)
+         call h5eset_auto_f(0, err)
          library_open = .true.
       end if
       call h5fcreate_f(path, H5F_ACC_TRUNC_F, this%fid, err)

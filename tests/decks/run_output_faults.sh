@@ -22,7 +22,7 @@ exe=$1 py=$2 src=$3 work=$4
 deck=$src/tests/decks/contact/v1_plane_q4.dat
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-trace='Fortran runtime|Backtrace|SIGSEGV|Segmentation|internal error'
+trace='Fortran runtime|Backtrace|SIGSEGV|Segmentation|internal error|HDF5-DIAG'
 # a tmpfs left mounted by an interrupted run would make the clean-up fail
 umount "$work/output_faults/mnt" 2>/dev/null
 rm -rf "$work/output_faults" && mkdir -p "$work/output_faults" && cd "$work/output_faults" || exit 1
