@@ -37,6 +37,7 @@ module condensed_system
    use strings, only: itoa
    use contact_system, only: contact_system_t, index_contact_equations
    use contact_dense, only: contact_dense_t, set_contact_springs
+   use lapack_interfaces, only: dpotrf, dpotri
    implicit none
    private
    public :: condensed_system_t
@@ -66,23 +67,6 @@ module condensed_system
       procedure :: describe => condensed_describe
       procedure :: memory_bytes => condensed_memory
    end type condensed_system_t
-
-   interface
-      subroutine dpotrf(uplo, n, a, lda, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, lda
-         real(dp), intent(inout) :: a(lda, *)
-         integer, intent(out) :: info
-      end subroutine dpotrf
-      subroutine dpotri(uplo, n, a, lda, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, lda
-         real(dp), intent(inout) :: a(lda, *)
-         integer, intent(out) :: info
-      end subroutine dpotri
-   end interface
 
 contains
 

@@ -59,6 +59,7 @@ module contact_dense
    use errors, only: status_t, STAT_SOLVER, STAT_SINGULAR
    use strings, only: itoa
    use contact_projection, only: contact_projection_t
+   use lapack_interfaces, only: dpotrf, dpotrs, dgetrf, dgetrs, dsymv, dgemv
    implicit none
    private
    public :: contact_dense_t, PIVOT_TOL, set_contact_springs
@@ -122,53 +123,6 @@ module contact_dense
       procedure, private :: residual => dense_residual
       procedure, private :: direct => dense_direct
    end type contact_dense_t
-
-   interface
-      subroutine dpotrf(uplo, n, a, lda, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, lda
-         real(dp), intent(inout) :: a(lda, *)
-         integer, intent(out) :: info
-      end subroutine dpotrf
-      subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, nrhs, lda, ldb
-         real(dp), intent(in) :: a(lda, *)
-         real(dp), intent(inout) :: b(ldb, *)
-         integer, intent(out) :: info
-      end subroutine dpotrs
-      subroutine dgetrf(m, n, a, lda, ipiv, info)
-         import :: dp
-         integer, intent(in) :: m, n, lda
-         real(dp), intent(inout) :: a(lda, *)
-         integer, intent(out) :: ipiv(*), info
-      end subroutine dgetrf
-      subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
-         import :: dp
-         character(len=1), intent(in) :: trans
-         integer, intent(in) :: n, nrhs, lda, ldb
-         real(dp), intent(in) :: a(lda, *)
-         integer, intent(in) :: ipiv(*)
-         real(dp), intent(inout) :: b(ldb, *)
-         integer, intent(out) :: info
-      end subroutine dgetrs
-      subroutine dsymv(uplo, n, alpha, a, lda, x, incx, beta, y, incy)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, lda, incx, incy
-         real(dp), intent(in) :: alpha, beta, a(lda, *), x(*)
-         real(dp), intent(inout) :: y(*)
-      end subroutine dsymv
-      subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-         import :: dp
-         character(len=1), intent(in) :: trans
-         integer, intent(in) :: m, n, lda, incx, incy
-         real(dp), intent(in) :: alpha, beta, a(lda, *), x(*)
-         real(dp), intent(inout) :: y(*)
-      end subroutine dgemv
-   end interface
 
 contains
 

@@ -32,6 +32,7 @@
 !!      Guide, 3rd ed. (1999), dsyev, dpotrf/dpotrs/dpotri, dgemm, dgemv.
 module contact_projection
    use kinds, only: dp, i8
+   use lapack_interfaces, only: dsyev, dpotrf, dpotri, dpotrs, dgemm, dgemv
    implicit none
    private
    public :: contact_projection_t
@@ -77,53 +78,6 @@ module contact_projection
       procedure :: solve => projection_solve
       procedure :: memory_bytes => projection_memory
    end type contact_projection_t
-
-   interface
-      subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-         import :: dp
-         character(len=1), intent(in) :: jobz, uplo
-         integer, intent(in) :: n, lda, lwork
-         real(dp), intent(inout) :: a(lda, *)
-         real(dp), intent(out) :: w(*), work(*)
-         integer, intent(out) :: info
-      end subroutine dsyev
-      subroutine dpotrf(uplo, n, a, lda, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, lda
-         real(dp), intent(inout) :: a(lda, *)
-         integer, intent(out) :: info
-      end subroutine dpotrf
-      subroutine dpotri(uplo, n, a, lda, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, lda
-         real(dp), intent(inout) :: a(lda, *)
-         integer, intent(out) :: info
-      end subroutine dpotri
-      subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, nrhs, lda, ldb
-         real(dp), intent(in) :: a(lda, *)
-         real(dp), intent(inout) :: b(ldb, *)
-         integer, intent(out) :: info
-      end subroutine dpotrs
-      subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
-         import :: dp
-         character(len=1), intent(in) :: transa, transb
-         integer, intent(in) :: m, n, k, lda, ldb, ldc
-         real(dp), intent(in) :: alpha, beta, a(lda, *), b(ldb, *)
-         real(dp), intent(inout) :: c(ldc, *)
-      end subroutine dgemm
-      subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-         import :: dp
-         character(len=1), intent(in) :: trans
-         integer, intent(in) :: m, n, lda, incx, incy
-         real(dp), intent(in) :: alpha, beta, a(lda, *), x(*)
-         real(dp), intent(inout) :: y(*)
-      end subroutine dgemv
-   end interface
 
 contains
 

@@ -16,40 +16,12 @@ module dense_solver
    use kinds, only: dp, i8
    use errors, only: status_t, fatal_internal, STAT_SINGULAR, STAT_SOLVER
    use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
+   use lapack_interfaces, only: dpotrf, dpotrs, dtrtrs
    implicit none
    private
 
    public :: dense_solver_t
 
-
-   interface
-      !> LAPACK: Cholesky factorization of a symmetric positive definite matrix.
-      subroutine dpotrf(uplo, n, a, lda, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, lda
-         real(dp), intent(inout) :: a(lda, *)
-         integer, intent(out) :: info
-      end subroutine dpotrf
-      !> LAPACK: solve with the Cholesky factor from DPOTRF.
-      subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, nrhs, lda, ldb
-         real(dp), intent(in) :: a(lda, *)
-         real(dp), intent(inout) :: b(ldb, *)
-         integer, intent(out) :: info
-      end subroutine dpotrs
-      !> LAPACK: solve a triangular system.
-      subroutine dtrtrs(uplo, trans, diag, n, nrhs, a, lda, b, ldb, info)
-         import :: dp
-         character(len=1), intent(in) :: uplo, trans, diag
-         integer, intent(in) :: n, nrhs, lda, ldb
-         real(dp), intent(in) :: a(lda, *)
-         real(dp), intent(inout) :: b(ldb, *)
-         integer, intent(out) :: info
-      end subroutine dtrtrs
-   end interface
 
    !> Dense Cholesky solver with the `linear_solver_t` life cycle.
    type, extends(linear_solver_t) :: dense_solver_t
@@ -352,7 +324,6 @@ contains
       end associate
       s = 'dense'
    end function dense_name
-
 
    !> Message of a zero or negative pivot, naming the equation.
    pure function pivot_message(j, dj, kjj) result(msg)
