@@ -27,7 +27,7 @@ module increment_attempt
       type(coupling_t) :: coup
       real(dp), allocatable :: fcase(:, :, :)      !! (2, npoin, ncase) forces at factor 1
       real(dp), allocatable :: ucase(:, :, :)      !! (2, npoin, ncase) prescribed displacements at factor 1
-      real(dp), allocatable :: diag(:)             !! (neq) diagonal of K_AB
+      real(dp), allocatable :: diag(:)             !! (neq) diagonal of K_AB (round-off of the equilibrium check)
       logical, allocatable :: restrained(:, :)     !! (2, npoin)
       integer :: npair = 0
       integer :: maxrep = 30                       !! cap on solutions of one increment

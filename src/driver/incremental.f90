@@ -49,7 +49,8 @@ module incremental
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, commit_increment, &
                                 law_drift, augment_multipliers, MAX_SWITCH
    use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
-                         sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED
+                         sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, &
+                         imbalance_limit
    use contact_start, only: init_contact_states, start_pressure, increment_pressure
    use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular
    use contact_fields, only: build_contact_fields, pair_spacing
@@ -247,7 +248,6 @@ contains
       call an%sys%setup(an%solver, an%map, an%springs%peq, an%kref, status)
       if (.not. status%ok()) call stiffness_range(an%map, an%diag, status)
       if (.not. status%ok()) return
-      deallocate (an%diag)
       ! stress recovery layout (Gauss points are fixed)
       call recover_stresses(m, res%body_fields_t, status)
       if (.not. status%ok()) return
@@ -619,17 +619,16 @@ contains
       call check_finite_step(res%body_fields_t, res%contact, an%has_contact, srec%drift, srec%full, status)
       if (.not. status%ok()) return
 
-      ! invariants (SPEC §7): every body in equilibrium under loads, reactions
-      ! and spring forces (where the body fields were computed); no tension;
-      ! |F_T| <= mu F_n; v_e non-decreasing; frozen states and law drift: a
-      ! doubtful step, named where it happens
+      ! invariants (SPEC §7): bodies in equilibrium (where their fields were computed, to
+      ! round-off), no tension, |F_T| <= mu F_n, v_e non-decreasing; frozen states, drift: doubtful
       an%force_scale = max(an%force_scale, maxval(abs(fext)), maxval(abs(fsp)))
       imb = IMBALANCE_NOT_COMPUTED
       if (srec%full) then
          an%force_scale = max(an%force_scale, maxval(abs(res%react)))
          imb = body_imbalance(an%body, an%nbody, fext + res%react - fsp, an%force_scale, m%ntype == NTYPE_AXISYMMETRIC)
       end if
-      call audit_step(m%contact, res%contact, ve_old, imb, an%has_contact, srec)
+      call audit_step(m%contact, res%contact, ve_old, imb, imbalance_limit(an%diag, an%map%id, res%disp, &
+                      an%force_scale), an%has_contact, srec)
       call note_doubts(res%doubts, srec, stderr)
       call res%append_history(srec)
       if (an%has_contact) call build_contact_fields(m%contact, res%contact, res%fields)

@@ -31,11 +31,14 @@ module step_audit
    implicit none
    private
    public :: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, pair_list
-   public :: sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED
+   public :: sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, imbalance_limit
 
    !> step%imbalance of a step whose body fields were not computed (its
    !! results are not written: OPTIONS RESULTS), so its equilibrium was not checked.
    real(dp), parameter :: IMBALANCE_NOT_COMPUTED = -1.0_dp
+   !> A body out of equilibrium by more than this (relative to the force
+   !! scale), beyond the round-off of its internal forces, makes a step doubtful.
+   real(dp), parameter :: IMBALANCE_TOL = 1.0e-8_dp
 
    !> The body fields of the last step and the figures of every accepted
    !! step (one entry per step after `trim_history`; during the run the
@@ -48,6 +51,7 @@ module step_audit
       real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
       real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
                                                  !! (IMBALANCE_NOT_COMPUTED: a step not written)
+      real(dp), allocatable :: imbalance_limit(:) !! the imbalance beyond which the step is doubtful
       integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
       real(dp), allocatable :: penetration(:)    !! ideal contact: largest |u_n| (closed) or stick slip at the end
       integer, allocatable :: augmentations(:)   !! ideal contact: multiplier updates per increment
@@ -115,11 +119,12 @@ contains
    !! step%violations, step%imbalance, step%frozen, step%doubts ('' if the
    !! step is sound) and step%converged (false for an unsettled or frozen
    !! step).
-   subroutine audit_step(cdef, st, ve_old, imbalance, has_contact, step)
+   subroutine audit_step(cdef, st, ve_old, imbalance, limit, has_contact, step)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(in) :: st       !! committed states of the step
       real(dp), intent(in) :: ve_old(:)             !! effective slip before the step
       real(dp), intent(in) :: imbalance             !! largest body imbalance, relative (body_imbalance)
+      real(dp), intent(in) :: limit                 !! the imbalance beyond which it is doubtful (imbalance_limit)
       logical, intent(in) :: has_contact
       type(step_record_t), intent(inout) :: step
       integer :: nbad
@@ -134,12 +139,13 @@ contains
          frozen = frozen_pairs(cdef, st)
       end if
       if (nbad > 0) imsg = imsg//' (pairs'//pair_list(bad)//')'
-      if (imbalance > 1.0e-8_dp) then
+      if (imbalance > limit) then
          nbad = nbad + 1
          if (len(imsg) > 0) imsg = imsg//'; '
-         imsg = imsg//'a body is out of equilibrium by '//rtoa(imbalance)//' of the load'
+         imsg = imsg//'a body is out of equilibrium by '//rtoa(imbalance)//' of the load (limit '//rtoa(limit)//')'
       end if
       step%imbalance = imbalance
+      step%imbalance_limit = limit
       step%violations = nbad
       step%frozen = size(frozen)
       ! frozen modes end the iteration without meeting its criterion
@@ -298,6 +304,7 @@ contains
       h%penetration(n) = step%penetration
       h%augmentations(n) = step%augmentations
       h%imbalance(n) = step%imbalance
+      h%imbalance_limit(n) = step%imbalance_limit
       h%violations(n) = step%violations
       h%nhist = n
    end subroutine append_history
@@ -320,6 +327,7 @@ contains
       call grow_real(h%drift)
       call grow_real(h%penetration)
       call grow_real(h%imbalance)
+      call grow_real(h%imbalance_limit)
    contains
       pure subroutine grow_int(a)
          integer, allocatable, intent(inout) :: a(:)
@@ -368,4 +376,31 @@ contains
       s = 'a number of the model is out of the range of double precision (a load factor, a modulus, '// &
           'a roughness constant c_n^m or an exponent): check the deck''s values and units'
    end function cause
+   !> The largest relative imbalance of a body that is round-off, not an
+   !! error: IMBALANCE_TOL plus the round-off of the bodies' internal forces.
+   !! A computed product K u (and the solution of K u = f) carries an error
+   !! of about eps |K_i| |u| in equation i (N. J. Higham, Accuracy and
+   !! Stability of Numerical Algorithms, 2nd ed., SIAM 2002, sec. 3.5 and
+   !! 9.1), |K_i| |u| at most about 4 k_ii |u_i| where the body moves nearly
+   !! as a whole; summed over a body's equations with random signs, the
+   !! imbalance's round-off is about 4 eps sqrt(sum_i (k_ii u_i)^2).  For
+   !! bodies of ordinary stiffness this is far below 1e-8 of the loads; it
+   !! counts where a nearly rigid body (E of 1e9 N/mm2 on a soft interface,
+   !! say) moves by much more than it deforms, and K u cancels to the forces
+   !! from numbers 1e7 times larger.
+   pure real(dp) function imbalance_limit(diag, id, disp, scale) result(limit)
+      real(dp), intent(in) :: diag(:)      !! (neq) diagonal of the bodies' stiffness
+      integer, intent(in) :: id(:, :)      !! (2, npoin) equation of each dof (<= 0: restrained)
+      real(dp), intent(in) :: disp(:, :)   !! (2, npoin) displacements of the step
+      real(dp), intent(in) :: scale        !! the force scale the imbalance is relative to
+      real(dp) :: s
+      integer :: ip, idof
+      s = 0.0_dp
+      do ip = 1, min(size(id, 2), size(disp, 2))
+         do idof = 1, 2
+            if (id(idof, ip) > 0) s = s + (diag(id(idof, ip))*disp(idof, ip))**2
+         end do
+      end do
+      limit = IMBALANCE_TOL + 4.0_dp*epsilon(1.0_dp)*sqrt(s)/scale
+   end function imbalance_limit
 end module step_audit

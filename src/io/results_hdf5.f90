@@ -291,6 +291,7 @@ contains
       if (step%ideal) call attr_real0(gid, 'penetration', step%penetration, err)
       if (step%ideal) call attr_int(gid, 'augmentations', step%augmentations, err)
       call attr_real0(gid, 'imbalance', step%imbalance, err)
+      call attr_real0(gid, 'imbalance_limit', step%imbalance_limit, err)
       call attr_int(gid, 'invariant_violations', step%violations, err)
       if (allocated(step%doubts)) then
          if (len(step%doubts) > 0) call attr_string(gid, 'doubts', step%doubts, err)

@@ -64,6 +64,7 @@ module records
       real(dp) :: residual = 0.0_dp          !! relative out-of-balance force left (contact)
       real(dp) :: drift = 0.0_dp             !! largest departure of F_n from its curve, relative (contact)
       real(dp) :: imbalance = 0.0_dp         !! largest force imbalance of a body, relative
+      real(dp) :: imbalance_limit = 1.0e-8_dp !! the imbalance beyond which it is doubtful (round-off included)
       integer :: violations = 0              !! invariant violations (SPEC §7)
       integer :: frozen = 0                  !! pairs whose modes were frozen (chatter)
       real(dp) :: penetration = 0.0_dp       !! ideal contact: largest |u_n| (closed) or stick slip
