@@ -59,7 +59,7 @@ module contact_dense
    use errors, only: status_t, STAT_SOLVER, STAT_SINGULAR
    use strings, only: itoa
    use contact_projection, only: contact_projection_t
-   use lapack_interfaces, only: dpotrf, dpotrs, dgetrf, dgetrs, dsymv, dgemv
+   use lapack_interfaces, only: dpotrf, dpotrs, dgetrf, dgetrs, dsymv, dgemv, dtrsv
    implicit none
    private
    public :: contact_dense_t, PIVOT_TOL, set_contact_springs
@@ -380,21 +380,26 @@ contains
       real(dp), intent(inout) :: x(:)            !! (n)
       type(status_t), intent(inout) :: status
       integer :: it
+      logical :: ok
       this%bad = 0
       if (this%n == 0) return
       if (this%projected .or. this%m > 0) then
          this%g0 = x
-         call this%woodbury_solve(x, status)
+         call this%woodbury_solve(x, ok, status)
          if (.not. status%ok()) return
-         do it = 1, MAX_REFINE
-            call this%residual(x, this%r)
-            call this%woodbury_solve(this%r, status)
-            if (.not. status%ok()) return
-            x = x + this%r
-            this%refinements = this%refinements + 1
-            if (maxval(abs(this%r)) <= REFINE_TOL*maxval(abs(x))) return
-         end do
-         ! not converging: the direct factorization of these springs
+         if (ok) then
+            do it = 1, MAX_REFINE
+               call this%residual(x, this%r)
+               call this%woodbury_solve(this%r, ok, status)
+               if (.not. status%ok()) return
+               if (.not. ok) exit
+               x = x + this%r
+               this%refinements = this%refinements + 1
+               if (maxval(abs(this%r)) <= REFINE_TOL*maxval(abs(x))) return
+            end do
+         end if
+         ! not converging, or the springs not positive definite in their
+         ! coordinates: the direct factorization of these springs
          this%fallbacks = this%fallbacks + 1
          call this%direct(status)
          if (.not. status%ok() .or. this%bad > 0) return
@@ -404,14 +409,17 @@ contains
    end subroutine dense_solve
 
    !> Solve with the factors of A_0 and the low-rank update, or in the
-   !! springs' coordinates.
-   subroutine dense_woodbury_solve(this, x, status)
+   !! springs' coordinates (ok = .false.: the springs are not clearly
+   !! positive definite there, x undefined).
+   subroutine dense_woodbury_solve(this, x, ok, status)
       class(contact_dense_t), intent(inout) :: this
       real(dp), intent(inout) :: x(:)
+      logical, intent(out) :: ok
       type(status_t), intent(inout) :: status
       integer :: info, m, j, k
+      ok = .true.
       if (this%projected) then
-         call this%proj%solve(this%ppos, x)
+         call this%proj%solve(this%ppos, x, ok)
          return
       end if
       call this%base_solve(x, status)
@@ -438,12 +446,13 @@ contains
          call status%set(STAT_SOLVER, 'contact system: solve without valid factors of the contact equations')
          return
       end if
-      this%rhs(:, 1) = x
       if (this%cholesky) then
-         call dpotrs('U', this%n, 1, this%a, this%n, this%rhs, this%n, info)
-      else
-         call dgetrs('N', this%n, 1, this%a, this%n, this%ipiv, this%rhs, this%n, info)
+         call dtrsv('U', 'T', 'N', this%n, this%a, this%n, x, 1)
+         call dtrsv('U', 'N', 'N', this%n, this%a, this%n, x, 1)
+         return
       end if
+      this%rhs(:, 1) = x
+      call dgetrs('N', this%n, 1, this%a, this%n, this%ipiv, this%rhs, this%n, info)
       if (info /= 0) then
          call status%set(STAT_SOLVER, 'LAPACK solve of the contact equations: illegal argument '//itoa(-info))
          return
