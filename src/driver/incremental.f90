@@ -635,7 +635,7 @@ contains
 
       if (srec%written) call out%rf%write_increment(srec, res%body_fields_t, status, res%fields)
       if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) &
-         call list_step(out%lu, m, srec, res%body_fields_t, res%fields, out%lis_path, status)
+         call list_step(out%lu, m, srec, res%body_fields_t, res%fields, out%lis_path, status, out%lis_level /= 'FULL')
       if (.not. status%ok()) return
       res%completed = srec%step
       call system_clock(t1)

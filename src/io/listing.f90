@@ -23,7 +23,14 @@ module listing
    public :: list_header, list_method, list_input, list_step, list_displacements, list_stresses, &
              principal_stresses, list_contact, list_progress_header, list_progress
    public :: list_completed, list_failed, list_sliding_warning, list_doubts, list_interfaces
-   public :: close_listing, check_listing
+   public :: close_listing, check_listing, SHORT_TABLE_MAX_NODES
+
+   !> A SHORT listing lists the whole mesh's tables (displacements of every
+   !! node, stresses at every Gauss point) of its last increment up to this
+   !! many nodes; beyond, it says that the result file holds them (a
+   !! 1e5-dof mesh made a listing of 25 MB, and its formatting cost 0.6 s,
+   !! more than the mesh's factorization).  FULL lists them always.
+   integer, parameter :: SHORT_TABLE_MAX_NODES = 20000
 
 contains
 
@@ -206,7 +213,7 @@ contains
 
    !> The results of one step: displacements and reactions, the contact
    !! table (contact models), the Gauss-point stresses.
-   subroutine list_step(u, m, step, body, contact, path, status)
+   subroutine list_step(u, m, step, body, contact, path, status, short)
       integer, intent(in) :: u
       type(model_t), intent(in) :: m
       type(step_record_t), intent(in) :: step
@@ -214,30 +221,51 @@ contains
       type(contact_fields_t), intent(in), optional :: contact   !! listed when step%contact
       character(len=*), intent(in), optional :: path            !! the listing's file: with `status`, the
       type(status_t), intent(inout), optional :: status         !! listing is then checked (check_listing)
-      call list_displacements(u, m, step, body)
+      logical, intent(in), optional :: short                    !! a SHORT listing (see SHORT_TABLE_MAX_NODES)
+      logical :: tables
+      tables = .true.
+      if (present(short)) tables = .not. short .or. m%npoin <= SHORT_TABLE_MAX_NODES
+      call list_displacements(u, m, step, body, tables)
       if (step%contact .and. present(contact)) call list_contact(u, m%contact, step, contact)
-      call list_stresses(u, m, body%gp_start, body%xygp, body%sig_gp)
+      if (tables) then
+         call list_stresses(u, m, body%gp_start, body%xygp, body%sig_gp)
+      else
+         write (u, '(/a)') ' STRESSES AT GAUSS POINTS: '//itoa(size(body%sig_gp, 2))//' points, in the result file'// &
+            ' (the SHORT listing lists the mesh''s tables up to '//itoa(SHORT_TABLE_MAX_NODES)//' nodes;'// &
+            ' OPTIONS LISTING FULL lists them)'
+      end if
       if (present(path) .and. present(status)) call check_listing(u, path, status)
    end subroutine list_step
 
-   !> Displacements and reactions of one step.
-   subroutine list_displacements(u, m, step, body)
+   !> Displacements (unless table = .false.: a line saying where they are)
+   !! and reactions of one step.
+   subroutine list_displacements(u, m, step, body, table)
       integer, intent(in) :: u
       type(model_t), intent(in) :: m
       type(step_record_t), intent(in) :: step
       type(body_fields_t), intent(in) :: body
+      logical, intent(in), optional :: table
       integer :: ip
+      logical :: whole
+      whole = .true.
+      if (present(table)) whole = table
       write (u, '(/a)') repeat('-', 78)
       write (u, '(a,i0,a,*(f11.5))') ' INCREMENT ', step%step, '   load factor(s):', step%lambda
       if (allocated(step%doubts)) then
          if (len(step%doubts) > 0) write (u, '(a)') ' DOUBTFUL: '//step%doubts
       end if
       write (u, '(a)') repeat('-', 78)
-      write (u, '(/a)') ' DISPLACEMENTS'
-      write (u, '(a)') '   NODE          X-DISP          Y-DISP'
-      do ip = 1, m%npoin
-         write (u, '(i7, 2es16.7)') ip, body%disp(:, ip)
-      end do
+      if (.not. whole) then
+         write (u, '(/a)') ' DISPLACEMENTS: '//itoa(m%npoin)//' nodes, in the result file (the SHORT listing'// &
+            ' lists the mesh''s tables up to '//itoa(SHORT_TABLE_MAX_NODES)//' nodes; OPTIONS LISTING FULL lists them)'
+         write (u, '(a, 2es16.7)') '   largest |u_x|, |u_y|', maxval(abs(body%disp(1, :))), maxval(abs(body%disp(2, :)))
+      else
+         write (u, '(/a)') ' DISPLACEMENTS'
+         write (u, '(a)') '   NODE          X-DISP          Y-DISP'
+         do ip = 1, m%npoin
+            write (u, '(i7, 2es16.7)') ip, body%disp(:, ip)
+         end do
+      end if
       write (u, '(/a)') ' REACTIONS'
       write (u, '(a)') '   NODE         X-FORCE         Y-FORCE'
       do ip = 1, m%npoin
