@@ -47,29 +47,21 @@ contains
       integer, allocatable :: body(:), nolinks(:, :)
       logical, allocatable :: in_a(:), in_b(:)
       real(dp) :: nbar(2), aa, fn
-      integer :: nbody, j, k
+      integer :: nbody, j
       logical :: any_closed
 
       st%p_start = m%contact%opts%p_start
       if (st%p_start > 0.0_dp) return
       allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
       call find_bodies(m, nolinks, body, nbody)
-      in_a = .false.
-      in_b = .false.
+      call pair_bodies(m, body, nbody, [(m%contact%ifaces(m%contact%pairs(j)%iface)%law == LAW_ROUGH, &
+                                         j=1, size(m%contact%pairs))], in_a, in_b)
       nbar = 0.0_dp
       aa = 0.0_dp
       any_closed = .false.
       do j = 1, size(m%contact%pairs)
          associate (pr => m%contact%pairs(j))
             if (m%contact%ifaces(pr%iface)%law /= LAW_ROUGH) cycle
-            if (body(pr%node_a) > 0) in_a = in_a .or. body == body(pr%node_a)
-            do k = 2, pr%nn
-               if (body(pr%nodes(k)) > 0) then
-                  in_b = in_b .or. body == body(pr%nodes(k))
-               else
-                  in_b(pr%nodes(k)) = .true.      ! a rigid body's reference node
-               end if
-            end do
             if (.not. st%s(j)%closed) cycle
             any_closed = .true.
             aa = aa + pr%area
@@ -125,7 +117,7 @@ contains
       integer, allocatable :: body(:), nolinks(:, :)
       logical, allocatable :: in_a(:), in_b(:)
       real(dp) :: nbar(2), aa, fa, fb
-      integer :: nbody, j, k
+      integer :: nbody, j
       logical :: resting
 
       st%p_incr = 0.0_dp
@@ -141,21 +133,13 @@ contains
       if (.not. resting) return
       allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
       call find_bodies(m, nolinks, body, nbody)
-      in_a = .false.
-      in_b = .false.
+      call pair_bodies(m, body, nbody, [(m%contact%ifaces(m%contact%pairs(j)%iface)%law == LAW_ROUGH .and. &
+                                         m%contact%pairs(j)%area > 0.0_dp, j=1, size(m%contact%pairs))], in_a, in_b)
       nbar = 0.0_dp
       aa = 0.0_dp
       do j = 1, size(m%contact%pairs)
          associate (pr => m%contact%pairs(j))
             if (m%contact%ifaces(pr%iface)%law /= LAW_ROUGH .or. pr%area <= 0.0_dp) cycle
-            if (body(pr%node_a) > 0) in_a = in_a .or. body == body(pr%node_a)
-            do k = 2, pr%nn
-               if (body(pr%nodes(k)) > 0) then
-                  in_b = in_b .or. body == body(pr%nodes(k))
-               else
-                  in_b(pr%nodes(k)) = .true.      ! a rigid body's reference node
-               end if
-            end do
             if (.not. (st%s(j)%closed .or. st%s(j)%on_unloading)) cycle
             aa = aa + pr%area
             nbar = nbar + pr%area*pr%n
@@ -187,4 +171,37 @@ contains
          end do
       end function increment_resultant
    end subroutine increment_pressure
+
+   !> The nodes of the bodies that hold side A (in_a) and side B (in_b) of
+   !! the pairs flagged in `use` (a rigid body's reference node, body 0: in_b
+   !! itself), in one pass over the pairs and one over the nodes.
+   subroutine pair_bodies(m, body, nbody, use, in_a, in_b)
+      type(model_t), intent(in) :: m
+      integer, intent(in) :: body(:)           !! (npoin) body of each node (find_bodies), 0: none
+      integer, intent(in) :: nbody
+      logical, intent(in) :: use(:)            !! (npair) the pairs that count
+      logical, intent(out) :: in_a(:), in_b(:) !! (npoin)
+      logical :: fa(0:nbody), fb(0:nbody)
+      integer :: j, k, ip
+      fa = .false.
+      fb = .false.
+      in_b = .false.
+      do j = 1, size(m%contact%pairs)
+         if (.not. use(j)) cycle
+         associate (pr => m%contact%pairs(j))
+            if (body(pr%node_a) > 0) fa(body(pr%node_a)) = .true.
+            do k = 2, pr%nn
+               if (body(pr%nodes(k)) > 0) then
+                  fb(body(pr%nodes(k))) = .true.
+               else
+                  in_b(pr%nodes(k)) = .true.      ! a rigid body's reference node
+               end if
+            end do
+         end associate
+      end do
+      do ip = 1, size(body)
+         in_a(ip) = body(ip) > 0 .and. fa(max(body(ip), 0))
+         in_b(ip) = in_b(ip) .or. (body(ip) > 0 .and. fb(max(body(ip), 0)))
+      end do
+   end subroutine pair_bodies
 end module contact_start
