@@ -47,7 +47,10 @@
 !! coordinates (contact_projection: a Cholesky factorization of about n_c/2
 !! equations, 8 times fewer flops), any other directly as above; a singular
 !! system is always decided, and its equation named, by the direct
-!! factorization.
+!! factorization.  A solution through Woodbury's identity is refined against
+!! S + K_c itself (dense_solve), except in the springs' coordinates for
+!! symmetric springs no stiffer than NO_REFINE_STIFFNESS times the reference
+!! springs, where the identity loses no more than that factor of digits.
 !!
 !! No allocation happens after `init` and `prepare_projection`.
 !! Ref: G. H. Golub, C. F. Van Loan, Matrix Computations, 4th ed. (2013),
@@ -74,6 +77,13 @@ module contact_dense
    !! steps (else the direct factorization).
    real(dp), parameter :: REFINE_TOL = 1.0e-12_dp
    integer, parameter :: MAX_REFINE = 3
+   !> A solution in the springs' coordinates is not refined when the springs
+   !! are symmetric and no stiffer than this many times the reference springs
+   !! (about the bodies' own stiffness, K_ref being 0.1 of their diagonal):
+   !! Woodbury's x = y - V (t - z) then loses at most about that factor times
+   !! the round-off of a direct solve (see contact_projection), as the
+   !! refinement step it would cost confirms.
+   real(dp), parameter :: NO_REFINE_STIFFNESS = 10.0_dp
 
    !> S, and the factors of S + K_c.
    type :: contact_dense_t
@@ -387,6 +397,9 @@ contains
          this%g0 = x
          call this%woodbury_solve(x, ok, status)
          if (.not. status%ok()) return
+         if (ok .and. this%projected) then
+            if (this%proj%symmetric .and. this%proj%stiffness <= NO_REFINE_STIFFNESS) return
+         end if
          if (ok) then
             do it = 1, MAX_REFINE
                call this%residual(x, this%r)

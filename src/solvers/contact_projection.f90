@@ -34,15 +34,15 @@
 !! therefore keeps the factor of an earlier one, F^-1 + D_0, and each solve
 !! of (F^-1 + D) z = F^-1 t runs the conjugate gradient method preconditioned
 !! by it (one product with F^-1, the blocks of D and two triangular solves an
-!! iteration, r^2 flops each), until the residual is 1e-14 of the right-hand
+!! iteration, r^2 flops each), until the residual is 1e-15 of the right-hand
 !! side's: the preconditioned matrix differs from I by (F^-1 + D_0)^-1 (D -
 !! D_0), so a small or low-rank change of springs converges in a few
 !! iterations.  A solve that has not converged in PCG_MAX iterations, or
 !! meets a non-positive curvature (the matrix is not positive definite),
 !! factorizes F^-1 + D and solves with it, with the pivot test above; one
 !! that needed more than PCG_REFRESH iterations has the next set of springs
-!! factorized.  Either way the caller refines every solution against
-!! S + K_c itself.
+!! factorized.  Either way the caller refines the solution against S + K_c
+!! itself where Woodbury's formula may lose digits (contact_dense).
 !!
 !! Ref: W. W. Hager, "Updating the inverse of a matrix", SIAM Review 31
 !!      (1989) 221-239 (the Sherman-Morrison-Woodbury formula); G. H. Golub,
@@ -78,7 +78,7 @@ module contact_projection
    !! convergence, most iterations of a solve (about the cost of a
    !! factorization at r = 602), and the iterations beyond which the next set
    !! of springs is factorized.
-   real(dp), parameter :: PCG_TOL = 1.0e-14_dp
+   real(dp), parameter :: PCG_TOL = 1.0e-15_dp
    integer, parameter :: PCG_MAX = 30
    integer, parameter :: PCG_REFRESH = 8
    !> Largest asymmetry of a D_j, relative to the scale of the reference
@@ -107,6 +107,8 @@ module contact_projection
       logical :: stale = .false.               !! dcur differs from dfac: solves iterate
       real(dp), allocatable :: px(:), pr(:), pp(:), pq(:), pw(:)  !! (r) work of the iterations
       integer :: last_iterations = 0           !! iterations of the last solve (0: direct)
+      real(dp) :: stiffness = 0.0_dp           !! largest |D_j| / scale of K_ref,j of the current springs
+      logical :: symmetric = .true.            !! every D_j of the current springs is symmetric
       integer :: factorizations = 0            !! factorizations of F^-1 + D so far
       integer :: iterations = 0                !! conjugate gradient iterations so far
       integer :: iterative_solves = 0          !! solves by them so far
@@ -253,6 +255,7 @@ contains
       if (.not. this%ready) return
       nd = size(ppos, 1)
       symmetric = .true.
+      this%stiffness = 0.0_dp
       do j = 1, size(ppos, 2)
          rk = this%qrank(j)
          ! D_j = Q_j^T kc_j Q_j on the valid dofs
@@ -270,6 +273,7 @@ contains
          end do
          if (rk > 0) then
             if (.not. maxval(abs(this%d(1:rk, 1:rk))) <= MAX_STIFFNESS_RATIO*this%kscale(j)) return
+            this%stiffness = max(this%stiffness, maxval(abs(this%d(1:rk, 1:rk)))/this%kscale(j))
          end if
          ! kc_j = Q_j D_j Q_j^T, or the coordinates do not hold it
          do b = 1, nd
@@ -293,6 +297,7 @@ contains
          this%dcur(:, :, j) = 0.0_dp
          this%dcur(1:rk, 1:rk, j) = this%d(1:rk, 1:rk)
       end do
+      this%symmetric = symmetric
       if (this%factored .and. symmetric .and. this%last_iterations <= PCG_REFRESH) then
          this%stale = any(this%dcur /= this%dfac)
          done = .true.
