@@ -299,7 +299,7 @@ contains
       end do
       this%symmetric = symmetric
       if (this%factored .and. symmetric .and. this%last_iterations <= PCG_REFRESH) then
-         this%stale = any(this%dcur /= this%dfac)
+         this%stale = any(abs(this%dcur - this%dfac) > 0.0_dp)
          done = .true.
          return
       end if
@@ -359,7 +359,7 @@ contains
       this%last_iterations = 0
       bnorm = norm2(z)
       if (.not. bnorm > 0.0_dp) then
-         converged = bnorm == 0.0_dp
+         converged = bnorm <= 0.0_dp          ! zero (NaN: not)
          return
       end if
       this%px = 0.0_dp
