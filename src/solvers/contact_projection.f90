@@ -441,7 +441,8 @@ contains
       call dgemv('N', this%n, this%r, -1.0_dp, this%v, this%n, this%t, 1, 1.0_dp, x, 1)
    end subroutine projection_solve
 
-   !> S's factor, V, F^-1, F^-1 + D and the bases [bytes].
+   !> S's factor, V, F^-1, F^-1 + D, the bases, the springs' blocks and the
+   !! iterations' vectors [bytes].
    pure integer(i8) function projection_memory(this) result(bytes)
       class(contact_projection_t), intent(in) :: this
       bytes = 0
@@ -450,5 +451,6 @@ contains
       if (allocated(this%finv)) bytes = bytes + 8_i8*size(this%finv, kind=i8)
       if (allocated(this%c)) bytes = bytes + 8_i8*size(this%c, kind=i8)
       if (allocated(this%q)) bytes = bytes + 8_i8*size(this%q, kind=i8)
+      if (allocated(this%dcur)) bytes = bytes + 16_i8*size(this%dcur, kind=i8) + 40_i8*this%r
    end function projection_memory
 end module contact_projection
