@@ -79,7 +79,10 @@ contains
       real(dp), allocatable :: e(:)
       integer :: j, info
       this%condensed = .true.
-      this%kref = kref
+      ! allocated explicitly: gfortran 12's reallocation on assignment reads the
+      ! bounds of the unallocated component (UBSan: an integer overflow)
+      if (allocated(this%kref)) deallocate (this%kref)
+      allocate (this%kref, source=kref)
       call this%solver%restore_base()
       do j = 1, size(this%peq, 2)
          call this%solver%add_element(this%peq(:, j), kref(:, :, j))

@@ -107,7 +107,10 @@ contains
       type(status_t), intent(inout) :: status
       integer :: j
       this%condensed = .true.
-      this%kref = kref
+      ! allocated explicitly: gfortran 12's reallocation on assignment reads the
+      ! bounds of the unallocated component (UBSan: an integer overflow)
+      if (allocated(this%kref)) deallocate (this%kref)
+      allocate (this%kref, source=kref)
       allocate (this%dk, mold=kref)
       call index_contact_equations(this%peq, this%neq, this%id, this%ceq, this%pos, this%ppos, this%cdof)
       this%nc = size(this%ceq)
