@@ -231,11 +231,17 @@ contains
          call list_stresses(u, m, body%gp_start, body%xygp, body%sig_gp)
       else
          write (u, '(/a)') ' STRESSES AT GAUSS POINTS: '//itoa(size(body%sig_gp, 2))//' points, in the result file'// &
-            ' (the SHORT listing lists the mesh''s tables up to '//itoa(SHORT_TABLE_MAX_NODES)//' nodes;'// &
-            ' OPTIONS LISTING FULL lists them)'
+            short_tables_note()
       end if
       if (present(path) .and. present(status)) call check_listing(u, path, status)
    end subroutine list_step
+
+   !> Why a SHORT listing leaves a table out, and how to get it.
+   function short_tables_note() result(s)
+      character(len=:), allocatable :: s
+      s = ' (the SHORT listing lists the mesh''s tables up to '//itoa(SHORT_TABLE_MAX_NODES)//' nodes;'// &
+          ' OPTIONS LISTING FULL lists them)'
+   end function short_tables_note
 
    !> Displacements (unless table = .false.: a line saying where they are)
    !! and reactions of one step.
@@ -256,8 +262,7 @@ contains
       end if
       write (u, '(a)') repeat('-', 78)
       if (.not. whole) then
-         write (u, '(/a)') ' DISPLACEMENTS: '//itoa(m%npoin)//' nodes, in the result file (the SHORT listing'// &
-            ' lists the mesh''s tables up to '//itoa(SHORT_TABLE_MAX_NODES)//' nodes; OPTIONS LISTING FULL lists them)'
+         write (u, '(/a)') ' DISPLACEMENTS: '//itoa(m%npoin)//' nodes, in the result file'//short_tables_note()
          write (u, '(a, 2es16.7)') '   largest |u_x|, |u_y|', maxval(abs(body%disp(1, :))), maxval(abs(body%disp(2, :)))
       else
          write (u, '(/a)') ' DISPLACEMENTS'

@@ -84,8 +84,6 @@ module mumps_schur_system
       logical :: kept = .false.              !! cb and hc hold a condensation
       real(dp), allocatable :: cb(:)         !! (neq) its b_b (zero on c)
       real(dp), allocatable :: hc(:)         !! (n_c) its h(b_b) = g - b_c
-      integer :: condensations = 0           !! condensations by MUMPS in solves so far
-      integer :: reused = 0                  !! first right-hand sides condensed through cb, hc
    contains
       procedure :: prepare => schur_prepare
       procedure :: set_springs => schur_set_springs
@@ -176,7 +174,6 @@ contains
          if (reuse) then
             this%xc = b(this%ceq) + alpha*this%hc
             this%live = .false.
-            this%reused = this%reused + 1
          else
             select type (s => this%solver)
             type is (mumps_solver_t)
@@ -184,7 +181,6 @@ contains
             end select
             if (.not. status%ok()) return
             this%live = .true.
-            this%condensations = this%condensations + 1
             this%cb = b
             this%cb(this%ceq) = 0.0_dp
             this%hc = this%xc - b(this%ceq)
