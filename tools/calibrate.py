@@ -51,8 +51,9 @@ def parser():
                    help="fit the loading curve only (CN2, M2 left to the program's defaults)")
     p.add_argument("--same-exponent", action="store_true", help="fit the unloading branch with m2 = m")
     p.add_argument("--replay", action="store_true", help="run the cards through Kontakt2D and compare")
-    p.add_argument("--replay-floor", type=float, default=0.01,
-                   help="replay unloading rows below this fraction of the peak pressure at it (default 0.01)")
+    p.add_argument("--replay-floor", type=float, default=0.0,
+                   help="replay unloading rows below this fraction of the peak pressure at it and do not "
+                        "compare them (default 0: every row as measured, unloading to zero included)")
     p.add_argument("--exe", help="the kontakt2d program (default: K2D_EXECUTABLE, else build/kontakt2d)")
 
     p = sub.add_parser("tangent", help="R, S (and mu, kappa) from tangential curves at several normal pressures")

@@ -8,9 +8,10 @@ load per unit area at every pair.  SCHEME NEWTON returns every increment to the 
 increment ends on the law to the solver's tolerances (CONVERGE 1e-10, 1e-8).
 
 * normal:  a uniform pressure PN on the top edge, PN = one data pressure unit in model units;
-  load factor of increment k = the k-th measured pressure in data units.  The program cannot
-  yet unload to exactly zero pressure (a known issue): unloading and reloading rows below
-  `floor` x the largest pressure are replayed at that floor and not compared.
+  load factor of increment k = the k-th measured pressure in data units, unloading to exactly
+  zero included (the program returns every pair to the law's zero-force point there).  With
+  `floor` > 0, unloading and reloading rows below `floor` x the largest pressure are replayed
+  at that floor and not compared (default 0: every row as measured).
 * tangent: one run per curve; the normal force p_n A in two point loads on the top, tied in y
   (case 1, 5 increments), then the contact face of A driven tangentially (case 2: UX = one
   data length unit in mm, factor = the measured u_T in data units), one increment per row.
@@ -74,7 +75,7 @@ def _run(deck_path, exe):
     return r
 
 
-def replay_normal(fit, workdir, exe=None, floor=0.01, name="replay_normal"):
+def replay_normal(fit, workdir, exe=None, floor=0.0, name="replay_normal"):
     """Replay the pressure history of a normal fit (k2d.calibration.fit_normal)."""
     exe = find_or_build(exe)
     os.makedirs(workdir, exist_ok=True)
@@ -86,7 +87,8 @@ def replay_normal(fit, workdir, exe=None, floor=0.01, name="replay_normal"):
     d.comments = ["Written by tools/calibrate.py from %s: a uniform pressure history on one element,"
                   % os.path.basename(fit.path),
                   "load factor = the measured pressure in %s; closure = the law's (SCHEME NEWTON)." % pcol.unit,
-                  "Unloading rows below %g of the peak pressure are replayed at that floor." % floor]
+                  ("Unloading rows below %g of the peak pressure are replayed at that floor." % floor
+                   if floor > 0.0 else "Every row is replayed as measured, unloading to zero included.")]
     pn = pcol.scale / units.model_pressure              # one data pressure unit, model units
     d.edge_pressure("A", lambda x, y: abs(y - 1.0) < 1e-12, pn)
     for n in d.nodes_where("A", lambda x, y: abs(x) < 1e-12):
@@ -97,7 +99,7 @@ def replay_normal(fit, workdir, exe=None, floor=0.01, name="replay_normal"):
     lam, ninc = 0.0, 0
     for k in range(len(t)):
         target = p[k]
-        if fit.code[k] != "L" and target < pmin:
+        if floor > 0.0 and fit.code[k] != "L" and target < pmin:
             target = pmin
             rp.clipped.append(k)
         if target == lam:
@@ -205,5 +207,5 @@ def summary(rp, what):
          % (what, len(rp.rows), rp.max_error, rp.unit, rel, rp.max_model_error, rp.unit))
     if rp.clipped:
         s += ("\n  %d unloading row(s) below %g of the peak pressure replayed at that floor and not compared "
-              "(the program cannot yet unload to exactly zero pressure)" % (len(rp.clipped), rp.floor))
+              "(--replay-floor)" % (len(rp.clipped), rp.floor))
     return s
