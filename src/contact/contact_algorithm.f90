@@ -55,6 +55,7 @@ module contact_algorithm
                            normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient, &
                            bilinear_return
    use contact_element, only: pair_stiffness, pair_kinematics, pair_forces
+   use roundoff, only: roundoff_floor
    ! the state codes are those of the contact fields record (model layer)
    use records, only: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    implicit none
@@ -966,21 +967,30 @@ contains
    !! |F_T| <= mu F_n, the effective slip never decreases (`ve_old` is the
    !! previous increment's).  Returns the number of violations and a message
    !! naming the first one; `pairs`, every pair that violates one.
-   subroutine check_invariants(st, ve_old, nbad, msg, pairs)
+   !! The force checks allow 1e-10 of the largest committed F_n (the
+   !! iteration's tolerance) plus the round-off floor of the module roundoff
+   !! for the forces that cancel in a pair's force: its committed force is
+   !! the sum of the increments that loaded and unloaded it, forces of the
+   !! run's scale `fscale` (the largest nodal force so far).  At zero load
+   !! F_n is itself round-off, and 1e-10 of it would call round-off a
+   !! violation; for ordinary loads the floor is 1e-14 of the forces.
+   subroutine check_invariants(st, ve_old, nbad, msg, pairs, fscale)
       type(contact_state_t), intent(in) :: st
       real(dp), intent(in) :: ve_old(:)
       integer, intent(out) :: nbad
       character(len=:), allocatable, intent(out) :: msg
       integer, allocatable, intent(out), optional :: pairs(:)   !! the pairs concerned, ascending
-      real(dp) :: fscale, tol
+      real(dp), intent(in), optional :: fscale    !! the run's force scale (absent: the largest committed |F_n|)
+      real(dp) :: fmax, tol
       integer :: j
       logical :: hit(size(st%s))
       character(len=24) :: b
       nbad = 0
       msg = ''
       hit = .false.
-      fscale = max(maxval([0.0_dp, abs(st%s%fn)]), tiny(1.0_dp))
-      tol = 1.0e-10_dp*fscale
+      fmax = maxval([0.0_dp, abs(st%s%fn)])
+      tol = 1.0e-10_dp*fmax + roundoff_floor(fmax)
+      if (present(fscale)) tol = 1.0e-10_dp*fmax + roundoff_floor(max(fmax, fscale))
       do j = 1, size(st%s)
          associate (s => st%s(j))
             write (b, '(i0)') j
