@@ -40,6 +40,8 @@ module increment_attempt
       logical :: pending = .false.                 !! the recovery of the full field of steps is postponed
       real(dp), allocatable :: kref(:, :, :)       !! (nd, nd, npair) reference springs (contact_system)
       real(dp), allocatable :: spacing(:)          !! (npair) distance to the nearest other pair
+      real(dp), allocatable :: tlaw(:, :)          !! (3, npair) the tangential law along the committed
+                                                   !! history (contact_algorithm's tangential_drift)
       integer, allocatable :: body(:, :)           !! (2, npoin) body of each node, x and y (equilibrium check)
       integer :: nbody = 0
       real(dp) :: force_scale = tiny(1.0_dp)       !! largest nodal force seen so far

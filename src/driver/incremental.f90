@@ -47,7 +47,7 @@ module incremental
                           stiffness_range, zero_fields
    use contact_types, only: UPDATE_RETURN
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, commit_increment, &
-                                law_drift, augment_multipliers, MAX_SWITCH
+                                law_drift, augment_multipliers, MAX_SWITCH, tangential_drift
    use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
                          sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, &
                          imbalance_limit
@@ -395,6 +395,7 @@ contains
                                  status=merge(STEP_CONVERGED, STEP_UNSETTLED, att%converged), contact=an%has_contact, &
                                  ideal=res%contact%has_ideal, last=last, written=written, full=full)
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
+            if (an%has_contact) call tangential_drift(m%contact, res%contact, an%tlaw, srec%drift_t, srec%drift_t_pair)
             if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
             if (.not. status%ok()) exit deck

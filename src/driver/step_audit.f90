@@ -6,8 +6,9 @@
 !!   numbers are formed: after every attempt at an increment (its displacement
 !!   increment and spring forces) and in the fields of an accepted step.
 !! * Doubts: an accepted step is doubtful when contact states were frozen
-!!   after MAX_SWITCH mode changes (chatter), when the normal spring forces
-!!   left their law by more than DRIFT_LIMIT (the paper's explicit scheme), or
+!!   after MAX_SWITCH mode changes (chatter), when the normal or the
+!!   tangential spring forces left their law by more than DRIFT_LIMIT (the
+!!   paper's explicit scheme: law_drift, tangential_drift), or
 !!   when an invariant of SPEC §7 is violated (body equilibrium to 1e-8, no
 !!   tension, |F_T| <= mu F_n, non-decreasing effective slip).  A run with a
 !!   doubtful step ends "doubtful" (exit code 4), not "completed"; the pairs and
@@ -50,6 +51,7 @@ module step_audit
       integer, allocatable :: repeats(:)         !! repeats (mode changes) per increment
       real(dp), allocatable :: residual(:)       !! relative out-of-balance force after each increment
       real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
+      real(dp), allocatable :: drift_t(:)        !! largest departure of F_T from the tangential law, relative
       real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
                                                  !! (IMBALANCE_NOT_COMPUTED: a step not written)
       real(dp), allocatable :: imbalance_limit(:) !! the imbalance beyond which the step is doubtful
@@ -159,6 +161,11 @@ contains
          d = d//'normal spring forces up to '//percent(step%drift)//' % off the interface law (limit '// &
              itoa(nint(100.0_dp*DRIFT_LIMIT))//' %; the most at pair '//itoa(worst_drift_pair(cdef, st))//')'
       end if
+      if (has_contact .and. step%drift_t > DRIFT_LIMIT) then
+         if (len(d) > 0) d = d//'; '
+         d = d//'tangential spring forces up to '//percent(step%drift_t)//' % of mu F_n off the tangential law (limit '// &
+             itoa(nint(100.0_dp*DRIFT_LIMIT))//' %; the most at pair '//itoa(step%drift_t_pair)//')'
+      end if
       if (nbad > 0) then
          if (len(d) > 0) d = d//'; '
          d = d//itoa(nbad)//' invariant violation(s): '//imsg
@@ -178,7 +185,7 @@ contains
       doubts%steps = doubts%steps + 1
       if (doubts%first == 0) doubts%first = step%step
       if (step%frozen > 0) doubts%frozen = doubts%frozen + 1
-      if (step%contact .and. step%drift > DRIFT_LIMIT) doubts%drift = doubts%drift + 1
+      if (step%contact .and. max(step%drift, step%drift_t) > DRIFT_LIMIT) doubts%drift = doubts%drift + 1
       if (step%violations > 0) doubts%violations = doubts%violations + 1
       if (doubts%steps <= MAX_DOUBT_LINES) then
          if (len(doubts%details) > 0) doubts%details = doubts%details//new_line('a')
@@ -303,6 +310,7 @@ contains
       h%repeats(n) = step%repeats
       h%residual(n) = step%residual
       h%drift(n) = step%drift
+      h%drift_t(n) = step%drift_t
       h%penetration(n) = step%penetration
       h%augmentations(n) = step%augmentations
       h%imbalance(n) = step%imbalance
@@ -327,6 +335,7 @@ contains
       call grow_int(h%violations)
       call grow_real(h%residual)
       call grow_real(h%drift)
+      call grow_real(h%drift_t)
       call grow_real(h%penetration)
       call grow_real(h%imbalance)
       call grow_real(h%imbalance_limit)
