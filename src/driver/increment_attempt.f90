@@ -4,6 +4,7 @@
 !! with its value and tolerance, and advises only what is not already in use;
 !! a singular system names the node and dof.
 module increment_attempt
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
    use errors, only: status_t, STAT_NO_CONVERGENCE, STAT_SINGULAR
    use strings, only: itoa, rtoa
@@ -153,7 +154,8 @@ contains
             end do
          end do
       end if
-      att%rtol = resolvable_limit(tol, fscale, mag)
+      ! (a non-finite force or stiffness raises nothing: the checks of the finite numbers name it)
+      if (ieee_is_finite(mag)) att%rtol = resolvable_limit(tol, fscale, mag)
    end subroutine out_of_balance
 
    !> Name the node and dof of a singular equation in the message.
