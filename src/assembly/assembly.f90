@@ -65,13 +65,14 @@ contains
    !> Add every element's stiffness to the solver; keep restrained couplings;
    !! optionally the diagonal of K_AB on the free equations (the stiffness
    !! scale of the bodies at each equation).
-   subroutine assemble_bodies(m, map, solver, coup, status, diag)
+   subroutine assemble_bodies(m, map, solver, coup, status, diag, absrow)
       type(model_t), intent(in) :: m
       type(dof_map_t), intent(in) :: map
       class(linear_solver_t), intent(inout) :: solver
       type(coupling_t), intent(out) :: coup
       type(status_t), intent(inout) :: status
       real(dp), intent(out), optional :: diag(:)   !! (neq) diagonal of K_AB
+      real(dp), intent(out), optional :: absrow(:) !! (neq) sum of |k_ij| over the elements and j (roundoff)
       real(dp) :: estif(2*MAX_NODE, 2*MAX_NODE), elcod(2, MAX_NODE)
       integer :: ieq(2*MAX_NODE), gdof(2*MAX_NODE), ie, nn, nevab, ierr, i, j
       integer :: imat
@@ -79,6 +80,7 @@ contains
       allocate (coup%row(1024), coup%col(1024), coup%val(1024))
       coup%n = 0
       if (present(diag)) diag = 0.0_dp
+      if (present(absrow)) absrow = 0.0_dp
       do ie = 1, m%nelem
          nn = m%nnode_e(ie)
          imat = m%matno(ie)
@@ -94,6 +96,11 @@ contains
          if (present(diag)) then
             do i = 1, nevab
                if (ieq(i) > 0) diag(ieq(i)) = diag(ieq(i)) + estif(i, i)
+            end do
+         end if
+         if (present(absrow)) then
+            do i = 1, nevab
+               if (ieq(i) > 0) absrow(ieq(i)) = absrow(ieq(i)) + sum(abs(estif(i, 1:nevab)))
             end do
          end if
          do j = 1, nevab

@@ -55,6 +55,7 @@ module contact_algorithm
                            normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient, &
                            bilinear_return
    use contact_element, only: pair_stiffness, pair_kinematics, pair_forces
+   use roundoff, only: roundoff_floor
    ! the state codes are those of the contact fields record (model layer)
    use records, only: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    implicit none
@@ -63,7 +64,7 @@ module contact_algorithm
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
              pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
-             start_force_normal, frozen_pairs
+             start_force_normal, frozen_pairs, tangential_drift
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: MAX_SWITCH
 
@@ -966,21 +967,30 @@ contains
    !! |F_T| <= mu F_n, the effective slip never decreases (`ve_old` is the
    !! previous increment's).  Returns the number of violations and a message
    !! naming the first one; `pairs`, every pair that violates one.
-   subroutine check_invariants(st, ve_old, nbad, msg, pairs)
+   !! The force checks allow 1e-10 of the largest committed F_n (the
+   !! iteration's tolerance) plus the round-off floor of the module roundoff
+   !! for the forces that cancel in a pair's force: its committed force is
+   !! the sum of the increments that loaded and unloaded it, forces of the
+   !! run's scale `fscale` (the largest nodal force so far).  At zero load
+   !! F_n is itself round-off, and 1e-10 of it would call round-off a
+   !! violation; for ordinary loads the floor is 1e-14 of the forces.
+   subroutine check_invariants(st, ve_old, nbad, msg, pairs, fscale)
       type(contact_state_t), intent(in) :: st
       real(dp), intent(in) :: ve_old(:)
       integer, intent(out) :: nbad
       character(len=:), allocatable, intent(out) :: msg
       integer, allocatable, intent(out), optional :: pairs(:)   !! the pairs concerned, ascending
-      real(dp) :: fscale, tol
+      real(dp), intent(in), optional :: fscale    !! the run's force scale (absent: the largest committed |F_n|)
+      real(dp) :: fmax, tol
       integer :: j
       logical :: hit(size(st%s))
       character(len=24) :: b
       nbad = 0
       msg = ''
       hit = .false.
-      fscale = max(maxval([0.0_dp, abs(st%s%fn)]), tiny(1.0_dp))
-      tol = 1.0e-10_dp*fscale
+      fmax = maxval([0.0_dp, abs(st%s%fn)])
+      tol = 1.0e-10_dp*fmax + roundoff_floor(fmax)
+      if (present(fscale)) tol = 1.0e-10_dp*fmax + roundoff_floor(max(fmax, fscale))
       do j = 1, size(st%s)
          associate (s => st%s(j))
             write (b, '(i0)') j
@@ -1036,4 +1046,66 @@ contains
          end associate
       end do
    end function law_drift
+
+   !> Largest departure of a closed rough pair's tangential force from the
+   !! tangential law, |F_T - F_T^law| / max(mu F_n): the tangential drift of
+   !! the explicit scheme, measured like law_drift's normal one.  F_T^law is
+   !! the law integrated along the committed history: every increment, the
+   !! return mapping of the law (bilinear_return, Masing's memory; the
+   !! increment's elastic stiffness K_T^e and mu) applied to the committed
+   !! tangential displacement increment at the committed normal force, from
+   !! the law's own force and back force after the last increment (tlaw, kept
+   !! by the caller); a pair that opens forgets them, one that closes starts
+   !! from zero, one at zero normal force (to 1e-12 of its forces) slips with
+   !! F_T = 0 (the rules of tangential_return).  The NEWTON update commits
+   !! exactly that force (drift 0 to round-off); the paper's explicit scheme
+   !! keeps the stiffness of the assumed state for the whole increment and its
+   !! own reading of the memory, and drifts.  Call once per committed
+   !! increment, after commit_increment (st%md and st%dut still hold the
+   !! increment's).
+   pure subroutine tangential_drift(cdef, st, tlaw, drift, worst)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(in) :: st
+      real(dp), allocatable, intent(inout) :: tlaw(:, :)  !! (3, npair) the law's F_T, back force, and F_n
+      real(dp), intent(out) :: drift                 !! relative to the largest mu F_n of the closed pairs
+      integer, intent(out) :: worst                  !! the pair farthest off (0: none)
+      integer :: j, itrial
+      real(dp) :: fmax, f0, x0, ft, xb, d, dmax
+      if (.not. allocated(tlaw)) then
+         allocate (tlaw(3, size(st%s)))
+         tlaw = 0.0_dp
+      end if
+      drift = 0.0_dp
+      worst = 0
+      fmax = 0.0_dp
+      dmax = 0.0_dp
+      do j = 1, size(st%s)
+         associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            if (.not. s%closed .or. ifc%law /= LAW_ROUGH .or. ifc%friction == FRICTION_NONE) then
+               tlaw(:, j) = 0.0_dp
+               cycle
+            end if
+            f0 = merge(0.0_dp, tlaw(1, j), md%newly_closed)
+            x0 = merge(0.0_dp, tlaw(2, j), md%newly_closed)
+            call bilinear_return(f0, st%dut(j), md%kte, ifc%kappa, md%mu*max(s%fn, 0.0_dp), x0, ifc%hardening, &
+                                 ft, xb, itrial)
+            if (s%fn <= 1.0e-12_dp*max(tlaw(3, j), pr%area*md%pa, tiny(1.0_dp))) then
+               ft = 0.0_dp
+               xb = 0.0_dp
+            end if
+            tlaw(:, j) = [ft, xb, s%fn]
+            fmax = max(fmax, md%mu*s%fn)
+            d = abs(s%ft - ft)
+            if (d > dmax) then
+               dmax = d
+               worst = j
+            end if
+         end associate
+      end do
+      if (fmax > 0.0_dp) then
+         drift = dmax/fmax
+      else
+         worst = 0
+      end if
+   end subroutine tangential_drift
 end module contact_algorithm

@@ -4,6 +4,7 @@
 !! with its value and tolerance, and advises only what is not already in use;
 !! a singular system names the node and dof.
 module increment_attempt
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
    use errors, only: status_t, STAT_NO_CONVERGENCE, STAT_SINGULAR
    use strings, only: itoa, rtoa
@@ -12,11 +13,12 @@ module increment_attempt
    use contact_system, only: contact_system_t
    use assembly, only: coupling_t
    use contact_assembly, only: contact_springs_t
-   use contact_types, only: contact_options_t
+   use contact_types, only: contact_options_t, contact_pair_t
    use contact_algorithm, only: contact_state_t
+   use roundoff, only: resolvable_limit
    implicit none
    private
-   public :: analysis_t, attempt_t, attempt_failure, describe_singular
+   public :: analysis_t, attempt_t, attempt_failure, describe_singular, out_of_balance
 
    !> Everything the increment loop works with.
    type :: analysis_t
@@ -27,7 +29,8 @@ module increment_attempt
       type(coupling_t) :: coup
       real(dp), allocatable :: fcase(:, :, :)      !! (2, npoin, ncase) forces at factor 1
       real(dp), allocatable :: ucase(:, :, :)      !! (2, npoin, ncase) prescribed displacements at factor 1
-      real(dp), allocatable :: diag(:)             !! (neq) diagonal of K_AB (round-off of the equilibrium check)
+      real(dp), allocatable :: diag(:)             !! (neq) diagonal of K_AB
+      real(dp), allocatable :: absrow(:)           !! (neq) sum of |k_ij| of K_AB's row (its forces' round-off, roundoff)
       logical, allocatable :: restrained(:, :)     !! (2, npoin)
       integer :: npair = 0
       integer :: maxrep = 30                       !! cap on solutions of one increment
@@ -38,6 +41,8 @@ module increment_attempt
       logical :: pending = .false.                 !! the recovery of the full field of steps is postponed
       real(dp), allocatable :: kref(:, :, :)       !! (nd, nd, npair) reference springs (contact_system)
       real(dp), allocatable :: spacing(:)          !! (npair) distance to the nearest other pair
+      real(dp), allocatable :: tlaw(:, :)          !! (3, npair) the tangential law along the committed
+                                                   !! history (contact_algorithm's tangential_drift)
       integer, allocatable :: body(:, :)           !! (2, npoin) body of each node, x and y (equilibrium check)
       integer :: nbody = 0
       real(dp) :: force_scale = tiny(1.0_dp)       !! largest nodal force seen so far
@@ -54,6 +59,7 @@ module increment_attempt
       logical :: converged = .false.
       logical :: changing = .false.                !! springs still changed their modes at the end
       real(dp) :: rnorm = 0.0_dp                   !! relative out-of-balance force
+      real(dp) :: rtol = 0.0_dp                    !! the limit of rnorm: TOLR raised by the round-off floor (roundoff)
       real(dp) :: fscale = 0.0_dp                  !! the force the out-of-balance force was measured against
       real(dp) :: dnorm = 0.0_dp                   !! last correction relative to the increment (Newton)
       real(dp) :: duscale = 0.0_dp                 !! largest displacement increment of a converged
@@ -96,9 +102,11 @@ contains
          what = 'ideal contact still penetrates or slips by '//rtoa(st%violation)//' > the tolerance '// &
                 rtoa(st%tol_pen)//' (AUGMENTED TOL) after '//itoa(st%augmentations)//' multiplier updates'
          advice = advice//' or the AUGMENTED factor'
-      else if (att%rnorm > opts%tol_residual) then
+      else if (att%rnorm > max(att%rtol, opts%tol_residual)) then
          what = 'the relative out-of-balance force '//rtoa(att%rnorm)//' > the tolerance '// &
                 rtoa(opts%tol_residual)//' (CONTACT CONVERGE TOLR)'
+         if (att%rtol > opts%tol_residual*(1.0_dp + 1.0e-3_dp)) what = what//' raised to '//rtoa(att%rtol)// &
+            ' by the round-off of the forces that cancel in it'
       else if (returning .and. att%dnorm > opts%tol_displacement) then
          what = 'the last displacement correction '//rtoa(att%dnorm)//' of the increment > the tolerance '// &
                 rtoa(opts%tol_displacement)//' (CONTACT CONVERGE TOLU)'
@@ -109,6 +117,46 @@ contains
       call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                       itoa(att%solutions)//' solutions: '//what//advice)
    end subroutine attempt_failure
+
+   !> The out-of-balance force of the last solution, relative to fscale
+   !! (att%rnorm), and the limit it is held to (att%rtol): the tolerance
+   !! TOLR raised by the round-off of what cancels in it (module roundoff).
+   !! The out-of-balance force lives on the contact equations (rhs: the
+   !! spring forces the solution predicted minus the actual ones), but it
+   !! inherits the round-off of the solution: the bodies' forces K du of the
+   !! increment are resolved only to about epsilon |K| |du|.  The magnitude
+   !! that cancels at a contact dof is |K_i| |du_i| (|K_i| the row's absolute
+   !! sum, absrow) plus the spring forces there; the largest over the pairs'
+   !! dofs is the magnitude.  For bodies of ordinary stiffness its round-off
+   !! is 1e-15 to 1e-12 of the load increment, and rtol is TOLR.
+   pure subroutine out_of_balance(an, pairs, rhs, rvec, fscale, tol, att)
+      type(analysis_t), intent(in) :: an
+      type(contact_pair_t), intent(in) :: pairs(:)
+      real(dp), intent(in) :: rhs(:)              !! (neq) out-of-balance force
+      real(dp), intent(in) :: rvec(:, :)          !! (nd, npair) spring forces of the pairs
+      real(dp), intent(in) :: fscale              !! the force rnorm is relative to
+      real(dp), intent(in) :: tol                 !! CONTACT CONVERGE TOLR
+      type(attempt_t), intent(inout) :: att       !! du in, rnorm and rtol out
+      real(dp) :: mag
+      integer :: j, k, ieq, ip
+      att%rnorm = 0.0_dp
+      att%rtol = tol
+      if (size(rhs) == 0) return
+      att%rnorm = maxval(abs(rhs))/fscale
+      mag = 0.0_dp
+      if (allocated(an%absrow) .and. allocated(an%springs%peq)) then
+         do j = 1, size(pairs)
+            do k = 1, 2*pairs(j)%nn
+               ieq = an%springs%peq(k, j)
+               if (ieq <= 0) cycle
+               ip = pairs(j)%nodes((k + 1)/2)
+               mag = max(mag, an%absrow(ieq)*abs(att%du(2 - mod(k, 2), ip)) + abs(rvec(k, j)))
+            end do
+         end do
+      end if
+      ! (a non-finite force or stiffness raises nothing: the checks of the finite numbers name it)
+      if (ieee_is_finite(mag)) att%rtol = resolvable_limit(tol, fscale, mag)
+   end subroutine out_of_balance
 
    !> Name the node and dof of a singular equation in the message.
    subroutine describe_singular(an, status)

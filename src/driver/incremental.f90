@@ -47,12 +47,12 @@ module incremental
                           stiffness_range, zero_fields
    use contact_types, only: UPDATE_RETURN
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, commit_increment, &
-                                law_drift, augment_multipliers, MAX_SWITCH
+                                law_drift, augment_multipliers, MAX_SWITCH, tangential_drift
    use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
                          sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, &
                          imbalance_limit
    use contact_start, only: init_contact_states, start_pressure, increment_pressure
-   use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular
+   use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular, out_of_balance
    use contact_fields, only: build_contact_fields, pair_spacing
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary
@@ -201,8 +201,8 @@ contains
       call an%solver%analyse(an%map%neq, xadj, adjncy, status)
       if (.not. status%ok()) return
       call an%solver%zero()
-      allocate (an%diag(an%map%neq))
-      call assemble_bodies(m, an%map, an%solver, an%coup, status, an%diag)
+      allocate (an%diag(an%map%neq), an%absrow(an%map%neq))
+      call assemble_bodies(m, an%map, an%solver, an%coup, status, an%diag, an%absrow)
       if (.not. status%ok()) return
       call an%solver%store_base()
       call assemble_load_cases(m, an%fcase, an%ucase, status)
@@ -395,6 +395,7 @@ contains
                                  status=merge(STEP_CONVERGED, STEP_UNSETTLED, att%converged), contact=an%has_contact, &
                                  ideal=res%contact%has_ideal, last=last, written=written, full=full)
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
+            if (an%has_contact) call tangential_drift(m%contact, res%contact, an%tlaw, srec%drift_t, srec%drift_t_pair)
             if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
             if (.not. status%ok()) exit deck
@@ -539,7 +540,7 @@ contains
          call update_modes(again)
          if (again) cycle
          att%dnorm = dnorm      ! (counts for the Newton return of rough pairs only)
-         if (att%rnorm <= m%contact%opts%tol_residual .and. &
+         if (att%rnorm <= att%rtol .and. &
              (.not. newton .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
             if (.not. st%has_ideal) then
                att%converged = .true.
@@ -570,8 +571,7 @@ contains
          logical, intent(out) :: again
          call evaluate_pairs(m%contact, st, att%du, changed, first)
          call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
-         att%rnorm = 0.0_dp
-         if (an%map%neq > 0) att%rnorm = maxval(abs(rhs))/fscale
+         call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, m%contact%opts%tol_residual, att)
          att%changing = any(changed)
          att%nchanged = count(changed)
          att%first_changed = findloc(changed, .true., dim=1)
@@ -627,8 +627,8 @@ contains
          an%force_scale = max(an%force_scale, maxval(abs(res%react)))
          imb = body_imbalance(an%body, an%nbody, fext + res%react - fsp, an%force_scale, m%ntype == NTYPE_AXISYMMETRIC)
       end if
-      call audit_step(m%contact, res%contact, ve_old, imb, imbalance_limit(an%diag, an%map%id, res%disp, &
-                      an%force_scale), an%has_contact, srec)
+      call audit_step(m%contact, res%contact, ve_old, imb, imbalance_limit(an%absrow, an%map%id, res%disp, &
+                      an%force_scale), an%has_contact, srec, an%force_scale)
       call note_doubts(res%doubts, srec, stderr)
       call res%append_history(srec)
       if (an%has_contact) call build_contact_fields(m%contact, res%contact, res%fields)

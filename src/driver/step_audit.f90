@@ -6,8 +6,9 @@
 !!   numbers are formed: after every attempt at an increment (its displacement
 !!   increment and spring forces) and in the fields of an accepted step.
 !! * Doubts: an accepted step is doubtful when contact states were frozen
-!!   after MAX_SWITCH mode changes (chatter), when the normal spring forces
-!!   left their law by more than DRIFT_LIMIT (the paper's explicit scheme), or
+!!   after MAX_SWITCH mode changes (chatter), when the normal or the
+!!   tangential spring forces left their law by more than DRIFT_LIMIT (the
+!!   paper's explicit scheme: law_drift, tangential_drift), or
 !!   when an invariant of SPEC §7 is violated (body equilibrium to 1e-8, no
 !!   tension, |F_T| <= mu F_n, non-decreasing effective slip).  A run with a
 !!   doubtful step ends "doubtful" (exit code 4), not "completed"; the pairs and
@@ -28,6 +29,7 @@ module step_audit
    use contact_laws, only: normal_pressure
    use contact_algorithm, only: contact_state_t, check_invariants, frozen_pairs, MAX_SWITCH
    use listing, only: list_sliding_warning
+   use roundoff, only: resolvable_limit
    implicit none
    private
    public :: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, pair_list
@@ -49,6 +51,7 @@ module step_audit
       integer, allocatable :: repeats(:)         !! repeats (mode changes) per increment
       real(dp), allocatable :: residual(:)       !! relative out-of-balance force after each increment
       real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
+      real(dp), allocatable :: drift_t(:)        !! largest departure of F_T from the tangential law, relative
       real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
                                                  !! (IMBALANCE_NOT_COMPUTED: a step not written)
       real(dp), allocatable :: imbalance_limit(:) !! the imbalance beyond which the step is doubtful
@@ -119,7 +122,7 @@ contains
    !! step%violations, step%imbalance, step%frozen, step%doubts ('' if the
    !! step is sound) and step%converged (false for an unsettled or frozen
    !! step).
-   subroutine audit_step(cdef, st, ve_old, imbalance, limit, has_contact, step)
+   subroutine audit_step(cdef, st, ve_old, imbalance, limit, has_contact, step, fscale)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(in) :: st       !! committed states of the step
       real(dp), intent(in) :: ve_old(:)             !! effective slip before the step
@@ -127,6 +130,7 @@ contains
       real(dp), intent(in) :: limit                 !! the imbalance beyond which it is doubtful (imbalance_limit)
       logical, intent(in) :: has_contact
       type(step_record_t), intent(inout) :: step
+      real(dp), intent(in), optional :: fscale      !! the run's force scale (largest nodal force so far)
       integer :: nbad
       integer, allocatable :: bad(:), frozen(:)
       character(len=:), allocatable :: imsg, d
@@ -135,7 +139,7 @@ contains
       allocate (character(len=0) :: imsg, d)
       allocate (bad(0), frozen(0))
       if (has_contact) then
-         call check_invariants(st, ve_old, nbad, imsg, bad)
+         call check_invariants(st, ve_old, nbad, imsg, bad, fscale)
          frozen = frozen_pairs(cdef, st)
       end if
       if (nbad > 0) imsg = imsg//' (pairs'//pair_list(bad)//')'
@@ -157,6 +161,11 @@ contains
          d = d//'normal spring forces up to '//percent(step%drift)//' % off the interface law (limit '// &
              itoa(nint(100.0_dp*DRIFT_LIMIT))//' %; the most at pair '//itoa(worst_drift_pair(cdef, st))//')'
       end if
+      if (has_contact .and. step%drift_t > DRIFT_LIMIT) then
+         if (len(d) > 0) d = d//'; '
+         d = d//'tangential spring forces up to '//percent(step%drift_t)//' % of mu F_n off the tangential law (limit '// &
+             itoa(nint(100.0_dp*DRIFT_LIMIT))//' %; the most at pair '//itoa(step%drift_t_pair)//')'
+      end if
       if (nbad > 0) then
          if (len(d) > 0) d = d//'; '
          d = d//itoa(nbad)//' invariant violation(s): '//imsg
@@ -176,7 +185,7 @@ contains
       doubts%steps = doubts%steps + 1
       if (doubts%first == 0) doubts%first = step%step
       if (step%frozen > 0) doubts%frozen = doubts%frozen + 1
-      if (step%contact .and. step%drift > DRIFT_LIMIT) doubts%drift = doubts%drift + 1
+      if (step%contact .and. max(step%drift, step%drift_t) > DRIFT_LIMIT) doubts%drift = doubts%drift + 1
       if (step%violations > 0) doubts%violations = doubts%violations + 1
       if (doubts%steps <= MAX_DOUBT_LINES) then
          if (len(doubts%details) > 0) doubts%details = doubts%details//new_line('a')
@@ -301,6 +310,7 @@ contains
       h%repeats(n) = step%repeats
       h%residual(n) = step%residual
       h%drift(n) = step%drift
+      h%drift_t(n) = step%drift_t
       h%penetration(n) = step%penetration
       h%augmentations(n) = step%augmentations
       h%imbalance(n) = step%imbalance
@@ -325,6 +335,7 @@ contains
       call grow_int(h%violations)
       call grow_real(h%residual)
       call grow_real(h%drift)
+      call grow_real(h%drift_t)
       call grow_real(h%penetration)
       call grow_real(h%imbalance)
       call grow_real(h%imbalance_limit)
@@ -376,20 +387,22 @@ contains
       s = 'a number of the model is out of the range of double precision (a load factor, a modulus, '// &
           'a roughness constant c_n^m or an exponent): check the deck''s values and units'
    end function cause
+
    !> The largest relative imbalance of a body that is round-off, not an
-   !! error: IMBALANCE_TOL plus the round-off of the bodies' internal forces.
-   !! A computed product K u (and the solution of K u = f) carries an error
-   !! of about eps |K_i| |u| in equation i (N. J. Higham, Accuracy and
-   !! Stability of Numerical Algorithms, 2nd ed., SIAM 2002, sec. 3.5 and
-   !! 9.1), |K_i| |u| at most about 4 k_ii |u_i| where the body moves nearly
-   !! as a whole; summed over a body's equations with random signs, the
-   !! imbalance's round-off is about 4 eps sqrt(sum_i (k_ii u_i)^2).  For
-   !! bodies of ordinary stiffness this is far below 1e-8 of the loads; it
-   !! counts where a nearly rigid body (E of 1e9 N/mm2 on a soft interface,
-   !! say) moves by much more than it deforms, and K u cancels to the forces
-   !! from numbers 1e7 times larger.
-   pure real(dp) function imbalance_limit(diag, id, disp, scale) result(limit)
-      real(dp), intent(in) :: diag(:)      !! (neq) diagonal of the bodies' stiffness
+   !! error: IMBALANCE_TOL raised by the round-off floor of the module
+   !! roundoff (the definition Newton's test and the invariant checks share).
+   !! A body's imbalance sums the out-of-balance forces of its equations, and
+   !! equation i is resolved only to the round-off of the forces that cancel
+   !! in it, the bodies' K u: about epsilon |K_i| |u| (Higham, 2nd ed., §3.5
+   !! and §9.1), |K_i| |u| = |K_i| |u_i| where the body moves nearly as a
+   !! whole (|K_i| the row's absolute sum, absrow).  Summed over the equations
+   !! with random signs the magnitude is sqrt(sum_i (|K_i| u_i)^2).  For
+   !! bodies of ordinary stiffness its round-off is far below 1e-8 of the
+   !! loads; it counts where a nearly rigid body (E of 1e9 N/mm2 on a soft
+   !! interface, say) moves by much more than it deforms, and K u cancels to
+   !! the forces from numbers 1e7 times larger.
+   pure real(dp) function imbalance_limit(absrow, id, disp, scale) result(limit)
+      real(dp), intent(in) :: absrow(:)    !! (neq) absolute row sums of the bodies' stiffness
       integer, intent(in) :: id(:, :)      !! (2, npoin) equation of each dof (<= 0: restrained)
       real(dp), intent(in) :: disp(:, :)   !! (2, npoin) displacements of the step
       real(dp), intent(in) :: scale        !! the force scale the imbalance is relative to
@@ -398,9 +411,9 @@ contains
       s = 0.0_dp
       do ip = 1, min(size(id, 2), size(disp, 2))
          do idof = 1, 2
-            if (id(idof, ip) > 0) s = s + (diag(id(idof, ip))*disp(idof, ip))**2
+            if (id(idof, ip) > 0) s = s + (absrow(id(idof, ip))*disp(idof, ip))**2
          end do
       end do
-      limit = IMBALANCE_TOL + 4.0_dp*epsilon(1.0_dp)*sqrt(s)/scale
+      limit = resolvable_limit(IMBALANCE_TOL, scale, sqrt(s))
    end function imbalance_limit
 end module step_audit

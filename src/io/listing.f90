@@ -310,8 +310,9 @@ contains
       character(len=5) :: ns, ts
       real(dp) :: pn, pt
       write (u, '(/a)') ' CONTACT PAIRS'
-      write (u, '(a,i0,a,i0,a,es10.3,a,es10.3)') '   solutions: ', step%solutions, '   repeats: ', step%repeats, &
-         '   out-of-balance: ', step%residual, '   normal-law drift: ', step%drift
+      write (u, '(a,i0,a,i0,a,es10.3,a,es10.3,a,es10.3)') '   solutions: ', step%solutions, '   repeats: ', &
+         step%repeats, '   out-of-balance: ', step%residual, '   normal-law drift: ', step%drift, &
+         '   tangential-law drift: ', step%drift_t
       write (u, '(a)') '   PAIR  NODE-A  NODE-B     X-COORD     Y-COORD        AREA    PRESSURE       SHEAR'// &
          '     CLOSURE        SLIP  SLIP-IRREV    MU  NORM  TANG'
       do j = 1, size(c%pairs)

@@ -288,6 +288,7 @@ contains
       call write_real2(gid, 'reaction', body%react, err)
       if (step%contact) call attr_real0(gid, 'residual', step%residual, err)
       if (step%contact) call attr_real0(gid, 'law_drift', step%drift, err)
+      if (step%contact) call attr_real0(gid, 'law_drift_tangential', step%drift_t, err)
       if (step%ideal) call attr_real0(gid, 'penetration', step%penetration, err)
       if (step%ideal) call attr_int(gid, 'augmentations', step%augmentations, err)
       call attr_real0(gid, 'imbalance', step%imbalance, err)

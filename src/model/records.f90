@@ -63,6 +63,9 @@ module records
       integer :: repeats = 0                 !! solutions caused by mode changes
       real(dp) :: residual = 0.0_dp          !! relative out-of-balance force left (contact)
       real(dp) :: drift = 0.0_dp             !! largest departure of F_n from its curve, relative (contact)
+      real(dp) :: drift_t = 0.0_dp           !! largest departure of F_T from the tangential law along the
+                                             !! committed history, relative to the largest mu F_n (contact)
+      integer :: drift_t_pair = 0            !! the pair of that largest departure (0: none)
       real(dp) :: imbalance = 0.0_dp         !! largest force imbalance of a body, relative
       real(dp) :: imbalance_limit = 1.0e-8_dp !! the imbalance beyond which it is doubtful (round-off included)
       integer :: violations = 0              !! invariant violations (SPEC §7)
