@@ -19,7 +19,9 @@
 !!   out-of-balance force vanishes (equilibrium on the curve).
 !!
 !! Slip (eq. 4.16, 4.18) uses the return-to-cone form of SPEC §4.3: F_T =
-!! s mu F_n with K_T = 0, s the sign of the elastic trial force.  The friction
+!! s mu F_n with K_T = 0, s the sign of the elastic trial force (RETURN: a pair
+!! whose iterates cycle between tangential states takes the secant of the law
+!! instead, see tangential_return).  The friction
 !! coefficient of increment i comes from the effective slip after increment
 !! i-1 (explicit, SPEC §2.3).
 !!
