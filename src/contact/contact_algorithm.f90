@@ -19,7 +19,9 @@
 !!   out-of-balance force vanishes (equilibrium on the curve).
 !!
 !! Slip (eq. 4.16, 4.18) uses the return-to-cone form of SPEC §4.3: F_T =
-!! s mu F_n with K_T = 0, s the sign of the elastic trial force.  The friction
+!! s mu F_n with K_T = 0, s the sign of the elastic trial force (RETURN: a pair
+!! whose iterates cycle between tangential states takes the secant of the law
+!! instead, see tangential_return).  The friction
 !! coefficient of increment i comes from the effective slip after increment
 !! i-1 (explicit, SPEC §2.3).
 !!
@@ -72,6 +74,11 @@ module contact_algorithm
    !! it keeps its last mode for the rest of the increment (frozen: chatter).
    integer, parameter :: MAX_SWITCH = 6
 
+   !> RETURN: lower bound of the secant tangential stiffness of a pair whose iterates
+   !! cycle between tangential states, as a fraction of K_T^e (about the branch slope
+   !! kappa = 0.04-0.05): a slipping pair keeps a stiffness that damps the cycle.
+   real(dp), parameter :: KSEC_LOW = 0.05_dp
+
    !> Committed state of one pair (end of an increment).
    type :: pair_state_t
       logical :: closed = .false.
@@ -108,6 +115,10 @@ module contact_algorithm
       real(dp) :: uthr = 0.0_dp           !! closure at which the pair (re)closes
       real(dp) :: mu = 0.0_dp
       integer :: nswitch = 0              !! mode changes in the increment so far (see MAX_SWITCH)
+      integer :: tvisited = 0             !! RETURN: the tangential states (tstate, tsign) met in the
+                                          !! increment, one bit each (tstate_bit)
+      logical :: tstable = .false.        !! RETURN: back in a state met before: the secant stiffness of
+                                          !! the law over the increment from then on (tangential_return)
       real(dp) :: sdir = 0.0_dp           !! ideal law: direction (+-1) of the current slip
    end type pair_mode_t
 
@@ -419,6 +430,11 @@ contains
          md%kt = 0.0_dp
          return
       end if
+      if (md%tstable) then
+         ! (a cycling pair: tangential_return sets its secant; K_T^e until it does)
+         md%kt = md%kte
+         return
+      end if
       select case (md%tstate)
       case (TS_STICK)
          md%kt = md%kte
@@ -682,7 +698,27 @@ contains
 
    !> RETURN: the tangential law integrated exactly over the increment at the
    !! current normal force (bilinear_return, Masing memory); a new state or a
-   !! new direction of the branch or slip is a mode change.
+   !! new direction of the branch or slip is a mode change, and the pair takes
+   !! the tangent of the state it lands on (K_T^e, kappa K_T^e, 0).
+   !!
+   !! Where the law has kinks (the branch start, slip onset) and the normal force
+   !! moves with the tangential forces (slip at mu F_n: dF_T/du_n = mu K_n, a term
+   !! the symmetric system cannot hold), these tangents can make the iterates cycle:
+   !! a pair lands in slip, its K_T = 0 lets the solution throw its F_n (and so its
+   !! limit) far off, the return lands on the branch, and back.  A pair that comes
+   !! back to a state (tstate, direction) it met before in the increment is taken
+   !! off this cycle: from then on it carries the secant of the law over the
+   !! increment, K_T = |F_T - F_T0| / |du_T| bounded to [KSEC_LOW K_T^e, K_T^e]
+   !! (all slopes of the law lie in [0, K_T^e]: the secant iteration of a monotone
+   !! law, which does not jump between the extreme slopes as the tangents do; the
+   !! bound keeps a slipping pair from being left free), and its later state changes are no
+   !! mode changes: its stiffness no longer depends on its state, and the
+   !! out-of-balance force and the last correction decide convergence as for any
+   !! Newton step.  The force is always the law's (the return), so a converged
+   !! increment is on the law whatever stiffness led there; the secant only costs
+   !! the quadratic rate of that pair.  Such a pair changes its mode at most 5
+   !! times (4 new states and the return to one), below MAX_SWITCH: only the
+   !! normal state (open / closed, branch) can still freeze a pair.
    pure subroutine tangential_return(ifc, s, md, area, dut, fn, may_switch, ft, changed, chatter)
       type(interface_t), intent(in) :: ifc
       type(pair_state_t), intent(in) :: s
@@ -709,16 +745,31 @@ contains
          itrial = TS_SLIP
          tsg = 0
       end if
+      md%tvisited = ior(md%tvisited, tstate_bit(md%tstate, md%tsign))
       if ((itrial /= md%tstate .or. tsg /= md%tsign) .and. may_switch) then
          md%tstate = itrial
          md%tsign = tsg
-         call set_kt(ifc, md)
-         ! a pair reaching zero normal force loses its tangential hold with no jump of
-         ! force (mu F_n = 0 bounds stick and slip alike): not a change that forces
-         ! another solution; the out-of-balance force of the solution decides
-         if (.not. unloaded) call flag(changed, md%nswitch, chatter)
+         if (.not. md%tstable) then
+            ! back in a state met before in this increment: the iterates cycle between
+            ! branches; the pair takes its secant stiffness from now on (below)
+            md%tstable = iand(md%tvisited, tstate_bit(itrial, tsg)) /= 0 .and. .not. unloaded
+            call set_kt(ifc, md)
+            ! a pair reaching zero normal force loses its tangential hold with no jump of
+            ! force (mu F_n = 0 bounds stick and slip alike): not a change that forces
+            ! another solution; the out-of-balance force of the solution decides
+            if (.not. unloaded) call flag(changed, md%nswitch, chatter)
+         end if
       end if
+      if (md%tstable .and. abs(dut) > 0.0_dp) &
+         md%kt = min(max(abs(ft - merge(0.0_dp, s%ft, md%newly_closed))/abs(dut), KSEC_LOW*md%kte), md%kte)
    end subroutine tangential_return
+
+   !> The bit of a tangential state (stick; branch -, +; slip -, 0 (unloaded), +) in
+   !! pair_mode_t%tvisited.
+   pure integer function tstate_bit(tstate, tsign) result(b)
+      integer, intent(in) :: tstate, tsign
+      b = 2**(3*tstate + tsign + 1)
+   end function tstate_bit
 
    !> EXPLICIT (the paper): F_T = F_T,prev + K_T dU_T with the stiffness of the
    !! assumed state for the whole increment (eqs. 4.15-4.18).  The paper's
