@@ -114,9 +114,9 @@ contains
       q_stiff = (cn2*m2)/(cn*m)
       if (m2 > m) then
          p_lo = 0.0_dp
-         p_hi = min((1.0_dp/q_res)**(1.0_dp/(m2 - m)), (1.0_dp/q_stiff)**(1.0_dp/(m2 - m)))
+         p_hi = power_root(1.0_dp/max(q_res, q_stiff), m2 - m)
       else if (m2 < m) then
-         p_lo = max(q_res**(1.0_dp/(m - m2)), q_stiff**(1.0_dp/(m - m2)))
+         p_lo = power_root(max(q_res, q_stiff), m - m2)
          p_hi = huge(1.0_dp)
       else if (q_res <= 1.0_dp) then
          p_lo = 0.0_dp
@@ -126,6 +126,19 @@ contains
          p_hi = 0.0_dp
       end if
    end subroutine admissible_reversals
+
+   !> x^(1/e) for x > 0, e > 0, as huge where it would overflow (an exponent
+   !! difference m2 - m of round-off size).
+   elemental real(dp) function power_root(x, e) result(r)
+      real(dp), intent(in) :: x, e
+      real(dp) :: lr
+      lr = log(x)/e
+      if (lr >= log(huge(1.0_dp))) then
+         r = huge(1.0_dp)
+      else
+         r = exp(lr)
+      end if
+   end function power_root
 
    !> The constant of the unloading branch from A = (u_A, p_A): cn2, or
    !! u_A / p_A^m2 where cn2 p_A^m2 > u_A (the residual closure would be
