@@ -30,8 +30,8 @@
 !!   largest over the pairs unloaded to zero force: a reversal point, and open
 !!   or at most UNLOADED_FRACTION p_A left at the end.  A pair that still
 !!   carries force has no permanent set yet (a tangential cycle under held
-!!   pressure moves the pairs' pressures off p_A by round-off, 1e-8): none is
-!!   reported for such a run.
+!!   pressure moves the pairs' pressures off p_A by round-off, 1e-8): the
+!!   line is printed only when some pair was unloaded to zero force.
 !! * unloading beyond the law's range: the pairs whose reversal pressure
 !!   (the largest of the run: A moves only up) exceeds their interface's p*.
 !!
@@ -402,8 +402,6 @@ contains
             write (u, '(a,es12.4,1x,a,a,i0,a)') '  residual closure    ', s%residual_closure, s%length_unit, &
                ' (permanent set after unloading to zero force: largest max(u_A - c_n2 p_A^m2, 0) of ', &
                s%nunloaded, ' pair(s))'
-         else
-            write (u, '(a)') '  residual closure     none: no pair was unloaded to zero force'
          end if
          if (s%nbeyond > 0) write (u, '(a,i0,a,i0,a,es12.4,a,es12.4,1x,a,a)') '  unloading law        ', s%nbeyond, &
             ' pair(s) reversed beyond the law''s admissible range; the farthest: pair ', s%beyond_pair, ', p_A ', &
