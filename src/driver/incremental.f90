@@ -57,8 +57,7 @@ module incremental
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
-                      list_progress, list_completed, list_failed, list_doubts, close_listing, &
-                      reversal_warning, list_reversal_warning
+                      list_progress, list_completed, list_failed, list_doubts, close_listing, list_reversals
    implicit none
    private
    public :: run_options_t, run_result_t, run_analysis
@@ -398,9 +397,7 @@ contains
                                  ideal=res%contact%has_ideal, last=last, written=written, full=full)
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
             if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
-            ! reversals beyond the unloading law's admissible range: terminal, listing, result file
-            if (an%has_contact) srec%warnings = reversal_warning(m%contact, nstep, pa_old, res%contact%s%pa)
-            if (an%has_contact) call list_reversal_warning(srec%warnings, out%lu, out%have_lis, res%warnings)
+            if (an%has_contact) call list_reversals(m%contact, pa_old, res%contact%s%pa, srec, out%lu, out%have_lis, res%warnings)
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
             if (.not. status%ok()) exit deck
             cuts = 0

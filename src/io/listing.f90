@@ -24,7 +24,7 @@ module listing
    public :: list_header, list_method, list_input, list_step, list_displacements, list_stresses, &
              principal_stresses, list_contact, list_progress_header, list_progress
    public :: list_completed, list_failed, list_sliding_warning, list_doubts, list_interfaces
-   public :: reversal_warning, list_reversal_warning, doubt_advice
+   public :: reversal_warning, list_reversals, doubt_advice
    public :: close_listing, check_listing, SHORT_TABLE_MAX_NODES
 
    !> A SHORT listing lists the whole mesh's tables (displacements of every
@@ -533,18 +533,24 @@ contains
       end associate
    end function reversal_warning
 
-   !> A warning of reversal_warning ('' none) to the terminal (the error
-   !! unit, as every warning) and the listing; counted in nwarn.
-   subroutine list_reversal_warning(text, lu, have_lis, nwarn)
-      character(len=*), intent(in) :: text
+   !> The pairs of a step that took a reversal point beyond the admissible
+   !! range of their unloading law (reversal_warning): the warning on the
+   !! terminal (the error unit, as every warning) and in the listing, and in
+   !! the step record (the increment's attribute `warnings` of the result
+   !! file); counted in nwarn.
+   subroutine list_reversals(c, pa_old, pa, step, lu, have_lis, nwarn)
+      type(contact_def_t), intent(in) :: c
+      real(dp), intent(in) :: pa_old(:), pa(:)      !! (npair) reversal pressures before and after the step
+      type(step_record_t), intent(inout) :: step    !! the step (its number; warnings set)
       integer, intent(in) :: lu                     !! listing unit
       logical, intent(in) :: have_lis               !! a listing is written
       integer, intent(inout) :: nwarn               !! warnings of the run
-      if (len(text) == 0) return
-      write (stderr, '(a)') 'kontakt2d: warning: '//text
-      if (have_lis) write (lu, '(a)') ' WARNING: '//text
+      step%warnings = reversal_warning(c, step%step, pa_old, pa)
+      if (len(step%warnings) == 0) return
+      write (stderr, '(a)') 'kontakt2d: warning: '//step%warnings
+      if (have_lis) write (lu, '(a)') ' WARNING: '//step%warnings
       nwarn = nwarn + 1
-   end subroutine list_reversal_warning
+   end subroutine list_reversals
 
    !> A pressure of the model with its unit, and in kgf/cm2 for UNITS KGF_UM.
    pure function pressure_text(p, units) result(text)
