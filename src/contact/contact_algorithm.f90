@@ -55,7 +55,7 @@ module contact_algorithm
                             UPDATE_RETURN, SLIP_GROSS, MAX_PAIR_NODES, NEWCLOSED_TANGENT
    use contact_laws, only: virgin_pressure, virgin_closure, virgin_tangent, unloading_tangent, residual_closure, &
                            normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient, &
-                           bilinear_return
+                           bilinear_return, unloading_constant
    use contact_element, only: pair_stiffness, pair_kinematics, pair_forces
    use roundoff, only: roundoff_floor
    ! the state codes are those of the contact fields record (model layer)
@@ -329,7 +329,7 @@ contains
             else
                p = max(s%fn/pr%area, pfloor)
                if (s%on_unloading) then
-                  md%kn = pr%area*unloading_tangent(p, ifc%cn2, ifc%m2)
+                  md%kn = pr%area*unloading_tangent(p, unloading_constant(s%ua, s%pa, ifc%cn2, ifc%m2), ifc%m2)
                else
                   md%kn = pr%area*virgin_tangent(p, ifc%cn, ifc%m)
                end if
@@ -405,7 +405,7 @@ contains
       type(pair_mode_t), intent(in) :: md
       real(dp), intent(in) :: p
       if (md%on_unloading .and. p < md%pa) then
-         u = md%ua - ifc%cn2*(md%pa**ifc%m2 - p**ifc%m2)
+         u = md%ua - unloading_constant(md%ua, md%pa, ifc%cn2, ifc%m2)*(md%pa**ifc%m2 - p**ifc%m2)
       else
          u = virgin_closure(p, ifc%cn, ifc%m)
       end if
@@ -612,7 +612,8 @@ contains
                   ! the increment is repeated with the unloading tangent; whether the pair
                   ! opens is decided with the displacements of that solution, not these
                   ! (the paper's eq. 4.10: the tangent at the pressure of the previous increment)
-                  md%kn = pr%area*unloading_tangent(max(s%fn/pr%area, pfloor), ifc%cn2, ifc%m2)
+                  md%kn = pr%area*unloading_tangent(max(s%fn/pr%area, pfloor), &
+                                                    unloading_constant(md%ua, md%pa, ifc%cn2, ifc%m2), ifc%m2)
                   fn = s%fn + md%kn*dun
                else
                   fn = pr%area*normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, .true., md%ua, md%pa)

@@ -24,7 +24,7 @@ module contact_definition
    use contact_types, only: contact_pair_t, interface_t, rigid_body_t, LAW_ROUGH, PAIR_NODE, PAIR_RIGID, &
                             MATCH_SEGMENT, RIGID_CIRCLE, UNITS_KGF_UM, UNITS_N_UM, KGF_PER_NMM2
    use contact_spec, only: iface_spec_t
-   use contact_laws, only: convert_interface
+   use contact_laws, only: convert_interface, admissible_reversals
    use contact_pairing, only: node_pairs, projected_pairs, E_COARSE_SIDE
    use restraint_check, only: find_bodies
    implicit none
@@ -236,6 +236,7 @@ contains
       character(len=*), intent(in) :: file           !! the deck
       type(error_list_t), intent(inout) :: errors    !! constants out of range (law_constants_fit)
       real(dp) :: nu_pair(size(pairs))
+      real(dp) :: p_lo
       integer :: k
       do k = 1, size(pairs)
          associate (p => pairs(k))
@@ -252,6 +253,9 @@ contains
       if (law%law == LAW_ROUGH) then
          if (.not. law_constants_fit(law, nu_pair, line, file, errors)) return
          call convert_interface(law, nu_pair)
+         ! the reversal pressures for which the unloading branch is admissible (the reader
+         ! rejects the laws whose range does not start at 0: M2 < M, or CN2 > CN with M2 = M)
+         call admissible_reversals(law%cn, law%m, law%cn2, law%m2, p_lo, law%p_reversal_max)
       else
          allocate (law%r_t(size(nu_pair)))
          law%r_t = 1.0_dp

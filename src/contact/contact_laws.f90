@@ -4,10 +4,15 @@
 !! tangent stiffness per unit area k_n = p^(1-m) / (cn m) (corrected eq. 3.27,
 !! SPEC D4); unloading from the reversal point A = (u_A, p_A) along
 !! u = u_A - cn2 (p_A^m2 - p^m2) (SPEC D8), reloading back along it to A and
-!! then on the virgin curve.  Tangential direction (SPEC §2.2): elastic
-!! stiffness k_T^e = p_n^S / R (eq. 2.7).  Friction (SPEC §2.3, D1):
-!! mu(v_e) = mu_m [1 - (1 - beta) exp(-n v_e)].  Units: model units, after
-!! `convert_interface` (SPEC §2.4).
+!! then on the virgin curve.  The branch is admissible for the reversal
+!! pressures of `admissible_reversals` (u_res >= 0, unloading at least as stiff
+!! as loading at A); beyond them the residual closure is taken as
+!! max(u_res, 0): a reversal whose u_A - cn2 p_A^m2 would be negative unloads
+!! along the branch of exponent m2 through A and (0, 0), u = u_A (p/p_A)^m2,
+!! i.e. with cn2 replaced by u_A / p_A^m2 (`unloading_constant`).
+!! Tangential direction (SPEC §2.2): elastic stiffness k_T^e = p_n^S / R
+!! (eq. 2.7).  Friction (SPEC §2.3, D1): mu(v_e) = mu_m [1 - (1 - beta)
+!! exp(-n v_e)].  Units: model units, after `convert_interface` (SPEC §2.4).
 !!
 !! No law knows about matrices; the spring element and the algorithm call these.
 module contact_laws
@@ -18,7 +23,8 @@ module contact_laws
    private
    public :: convert_interface, r_literature, virgin_pressure, virgin_closure, virgin_tangent, &
              unloading_pressure, unloading_tangent, residual_closure, normal_pressure, &
-             normal_tangent, tangential_stiffness, friction_coefficient, bilinear_return
+             normal_tangent, unloading_constant, admissible_reversals, tangential_stiffness, &
+             friction_coefficient, bilinear_return
 
 contains
 
@@ -86,16 +92,84 @@ contains
       k = max(p, 0.0_dp)**(1.0_dp - m)/(cn*m)
    end function virgin_tangent
 
-   !> Residual closure after unloading from A to p = 0 (SPEC D8).
+   !> The range of reversal pressures p_A for which the unloading branch
+   !! u = u_A - cn2 (p_A^m2 - p^m2) from a point A = (cn p_A^m, p_A) of the
+   !! virgin curve is admissible (SPEC §2.1): both
+   !!     u_res >= 0:        cn2 p_A^m2 <= cn p_A^m
+   !!     stiff unloading:   cn2 m2 p_A^(m2-1) <= cn m p_A^(m-1)
+   !! hold for p_lo <= p_A <= p_hi.  Each reads q <= p_A^(m-m2) with
+   !! q = cn2/cn or cn2 m2/(cn m), so with m2 > m: p_lo = 0,
+   !! p_hi = p* = min[(cn/cn2)^(1/(m2-m)), (cn m/(cn2 m2))^(1/(m2-m))];
+   !! with m2 < m: p_lo = max[(cn2/cn)^(1/(m-m2)), (cn2 m2/(cn m))^(1/(m-m2))],
+   !! p_hi = huge; with m2 = m: every p_A (0, huge) if cn2 <= cn, none
+   !! (p_lo = huge, p_hi = 0) otherwise.  In the pressure unit of the constants
+   !! (the conversion of SPEC §2.4 moves both sides alike).
+   elemental subroutine admissible_reversals(cn, m, cn2, m2, p_lo, p_hi)
+      real(dp), intent(in) :: cn, m       !! loading: u = cn p^m
+      real(dp), intent(in) :: cn2, m2     !! unloading: u = u_A - cn2 (p_A^m2 - p^m2)
+      real(dp), intent(out) :: p_lo       !! smallest admissible reversal pressure
+      real(dp), intent(out) :: p_hi       !! largest admissible reversal pressure (huge: no bound)
+      real(dp) :: q_res, q_stiff
+      q_res = cn2/cn
+      q_stiff = (cn2*m2)/(cn*m)
+      if (m2 > m) then
+         p_lo = 0.0_dp
+         p_hi = power_root(1.0_dp/max(q_res, q_stiff), m2 - m)
+      else if (m2 < m) then
+         p_lo = power_root(max(q_res, q_stiff), m - m2)
+         p_hi = huge(1.0_dp)
+      else if (q_res <= 1.0_dp) then
+         p_lo = 0.0_dp
+         p_hi = huge(1.0_dp)
+      else
+         p_lo = huge(1.0_dp)
+         p_hi = 0.0_dp
+      end if
+   end subroutine admissible_reversals
+
+   !> x^(1/e) for x > 0, e > 0, as huge where it would overflow (an exponent
+   !! difference m2 - m of round-off size).
+   elemental real(dp) function power_root(x, e) result(r)
+      real(dp), intent(in) :: x, e
+      real(dp) :: lr
+      lr = log(x)/e
+      if (lr >= log(huge(1.0_dp))) then
+         r = huge(1.0_dp)
+      else
+         r = exp(lr)
+      end if
+   end function power_root
+
+   !> The constant of the unloading branch from A = (u_A, p_A): cn2, or
+   !! u_A / p_A^m2 where cn2 p_A^m2 > u_A (the residual closure would be
+   !! negative and is taken as 0: the branch u = u_A (p/p_A)^m2 through A and
+   !! the origin, stiffer than the given one).  cn2 without a reversal point.
+   elemental real(dp) function unloading_constant(ua, pa, cn2, m2) result(c)
+      real(dp), intent(in) :: ua, pa, cn2, m2
+      c = cn2
+      if (pa > 0.0_dp .and. ua > 0.0_dp) then
+         if (cn2*pa**m2 > ua) c = ua/pa**m2
+      end if
+   end function unloading_constant
+
+   !> Residual closure after unloading from A to p = 0 (SPEC D8), taken as
+   !! max(u_A - cn2 p_A^m2, 0) (see unloading_constant).
    elemental real(dp) function residual_closure(ua, pa, cn2, m2) result(ures)
       real(dp), intent(in) :: ua, pa, cn2, m2
-      ures = ua - cn2*max(pa, 0.0_dp)**m2
+      ures = max(ua - cn2*max(pa, 0.0_dp)**m2, 0.0_dp)
    end function residual_closure
 
-   !> Pressure on the unloading branch through A at closure u (zero below the residual closure).
+   !> Pressure on the unloading branch through A at closure u (zero below the
+   !! residual closure); the branch through the origin where u_res is clamped.
    elemental real(dp) function unloading_pressure(u, ua, pa, cn2, m2) result(p)
       real(dp), intent(in) :: u, ua, pa, cn2, m2
       real(dp) :: q
+      if (unloading_constant(ua, pa, cn2, m2) < cn2) then
+         ! u_res clamped at 0: p = p_A (u/u_A)^(1/m2), exactly zero at u = 0
+         p = 0.0_dp
+         if (u > 0.0_dp) p = pa*(u/ua)**(1.0_dp/m2)
+         return
+      end if
       q = max(pa, 0.0_dp)**m2 - (ua - u)/cn2
       if (q <= 0.0_dp) then
          p = 0.0_dp
@@ -104,7 +178,8 @@ contains
       end if
    end function unloading_pressure
 
-   !> Tangent dp/du of the unloading branch at pressure p.
+   !> Tangent dp/du of the unloading branch at pressure p; cn2 is the
+   !! branch's constant (unloading_constant of its reversal point).
    elemental real(dp) function unloading_tangent(p, cn2, m2) result(k)
       real(dp), intent(in) :: p, cn2, m2
       k = max(p, 0.0_dp)**(1.0_dp - m2)/(cn2*m2)
@@ -129,7 +204,7 @@ contains
       logical, intent(in) :: on_unloading
       real(dp), intent(in) :: ua, pa
       if (on_unloading .and. u < ua) then
-         k = unloading_tangent(unloading_pressure(u, ua, pa, cn2, m2), cn2, m2)
+         k = unloading_tangent(unloading_pressure(u, ua, pa, cn2, m2), unloading_constant(ua, pa, cn2, m2), m2)
       else
          k = virgin_tangent(virgin_pressure(u, cn, m), cn, m)
       end if

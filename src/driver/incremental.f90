@@ -57,7 +57,7 @@ module incremental
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
-                      list_progress, list_completed, list_failed, list_doubts, close_listing
+                      list_progress, list_completed, list_failed, list_doubts, close_listing, list_reversals
    implicit none
    private
    public :: run_options_t, run_result_t, run_analysis
@@ -316,7 +316,7 @@ contains
       type(status_t), intent(inout) :: status
       type(attempt_t) :: att
       type(step_record_t) :: srec
-      real(dp), allocatable :: fext(:, :), fext_new(:, :), carry(:), dlam(:), ve_old(:)
+      real(dp), allocatable :: fext(:, :), fext_new(:, :), carry(:), dlam(:), ve_old(:), pa_old(:)
       integer :: inc, nstep, cuts, ic
       logical :: first, rough_newton, last, written, full
       real(dp) :: frac, step, s
@@ -385,6 +385,7 @@ contains
             fext = fext_new
             carry = att%carry
             ve_old = res%contact%s%ve
+            pa_old = res%contact%s%pa
             if (an%has_contact) call commit_increment(m%contact, res%contact)
             res%disp = res%disp + att%du
             srec = step_record_t(step=nstep, deck_increment=inc, fraction=frac, cuts=cuts, &
@@ -397,6 +398,7 @@ contains
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
             if (an%has_contact) call tangential_drift(m%contact, res%contact, an%tlaw, srec%drift_t, srec%drift_t_pair)
             if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
+            if (an%has_contact) call list_reversals(m%contact, pa_old, res%contact%s%pa, srec, out%lu, out%have_lis, res%warnings)
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
             if (.not. status%ok()) exit deck
             cuts = 0
@@ -662,7 +664,7 @@ contains
       ! checked (a full disk shows only at its close)
       if (out%have_lis) then
          if (status%ok() .and. res%doubts%steps > 0) then
-            call list_doubts(out%lu, res%doubts, doubt_summary(res%doubts, res%completed), '')
+            call list_doubts(out%lu, res%doubts, doubt_summary(res%doubts, res%completed), '', res%info)
          else if (.not. status%ok()) then
             call list_failed(out%lu, done, status%message, res%results_path, every)
          end if

@@ -10,12 +10,13 @@
 !!
 !! Ref: Hinton & Owen (1977), OUTPUT.
 module listing
-   use kinds, only: dp, pi
+   use kinds, only: dp, pi, stderr
    use errors, only: status_t, STAT_IO
    use strings, only: itoa, rtoa
    use version, only: K2D_VERSION
    use model, only: model_t, ntype_name
-   use contact_types, only: contact_def_t, units_name, LAW_ROUGH, UNITS_KGF_UM, UNITS_MODEL, MATCH_SEGMENT
+   use contact_types, only: contact_def_t, units_name, LAW_ROUGH, UNITS_KGF_UM, UNITS_MODEL, MATCH_SEGMENT, &
+                            KGF_PER_NMM2
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, NS_OPEN, &
                       NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP, MAX_DOUBT_LINES
    implicit none
@@ -23,6 +24,7 @@ module listing
    public :: list_header, list_method, list_input, list_step, list_displacements, list_stresses, &
              principal_stresses, list_contact, list_progress_header, list_progress
    public :: list_completed, list_failed, list_sliding_warning, list_doubts, list_interfaces
+   public :: reversal_warning, list_reversals, doubt_advice
    public :: close_listing, check_listing, SHORT_TABLE_MAX_NODES
 
    !> A SHORT listing lists the whole mesh's tables (displacements of every
@@ -130,6 +132,9 @@ contains
             line = line//'  (u = CN p^M, length and stress of the model'
             if (f%units == UNITS_KGF_UM) line = line//'; 1 N/mm2 = 10.19716 kgf/cm2'
             write (u, '(a)') line//')'
+            if (f%p_reversal_max < huge(1.0_dp)) write (u, '(a)') '   unloading branch admissible (u_res >= 0, '// &
+               'at least as stiff as loading) for reversal pressures up to p* = '//pressure_text(f%p_reversal_max, f%units)// &
+               '; beyond, u_res is taken as max(u_res, 0)'
          end associate
       end do
    end subroutine list_interfaces
@@ -431,11 +436,13 @@ contains
    !! and where the results are (the terminal, which had a warning at every
    !! doubtful increment), or the summary and the doubtful increments with the
    !! pairs concerned (the listing: results_path = '').
-   subroutine list_doubts(u, doubts, summary, results_path)
+   subroutine list_doubts(u, doubts, summary, results_path, info)
       integer, intent(in) :: u
       type(run_doubts_t), intent(in) :: doubts
       character(len=*), intent(in) :: summary        !! one line: how many of each kind
       character(len=*), intent(in) :: results_path   !! '' in the listing
+      type(run_info_t), intent(in), optional :: info !! the scheme and options of the run (for the advice;
+                                                     !! without it none)
       integer :: k, k0
       write (u, '(a)') repeat('-', 78)
       write (u, '(a)') 'kontakt2d: completed with doubts: '//summary
@@ -454,9 +461,110 @@ contains
       end do
       if (doubts%steps > MAX_DOUBT_LINES) write (u, '(a)') '  ... and '//itoa(doubts%steps - MAX_DOUBT_LINES)// &
          ' more doubtful increment(s)'
-      write (u, '(a)') '  (frozen states, law drift and invariant violations: docs/accuracy-and-stability.md; '// &
-         'smaller increments, SCHEME NEWTON or OPTIONS AUTOINC remove most)'
+      if (present(info)) then
+         write (u, '(a)') '  (frozen states, law drift and invariant violations: docs/accuracy-and-stability.md; '// &
+            doubt_advice(info)//')'
+      else
+         write (u, '(a)') '  (frozen states, law drift and invariant violations: docs/accuracy-and-stability.md)'
+      end if
    end subroutine list_doubts
+
+   !> What may remove the doubts of a run, for the scheme and the options it
+   !! used: SCHEME NEWTON only to a run of the incremental scheme (Newton holds
+   !! the laws and the balance at every increment end), OPTIONS AUTOINC only to
+   !! a run without it (a run with it: a smaller smallest step MINFRAC), and
+   !! smaller increments to every run.
+   pure function doubt_advice(info) result(text)
+      type(run_info_t), intent(in) :: info
+      character(len=:), allocatable :: text
+      text = 'what may remove them: smaller increments'
+      if (info%autoinc) then
+         text = text//', or a smaller AUTOINC MINFRAC (now '//rtoa(info%autoinc_min)//')'
+      else
+         text = text//', OPTIONS AUTOINC'
+      end if
+      if (.not. info%returning) text = text//', SCHEME NEWTON (the laws and the balance held at every increment end)'
+   end function doubt_advice
+
+   !> Warning for the pairs that took their reversal point A in a step beyond
+   !! the admissible range of their unloading law, p_A > p* (contact_laws'
+   !! admissible_reversals; docs/contact.md): how many, and the pair farthest
+   !! beyond (largest p_A / p*) with p_A, p* and what the law does there: a
+   !! negative residual closure u_A - c_n2 p_A^m2 (u_A = c_n p_A^m) is taken as
+   !! 0, a branch softer than loading at A is followed as given.  '' if none.
+   pure function reversal_warning(c, step, pa_old, pa) result(text)
+      type(contact_def_t), intent(in) :: c
+      integer, intent(in) :: step                   !! the step (increment of the result file)
+      real(dp), intent(in) :: pa_old(:)             !! (npair) reversal pressures before the step (0: none)
+      real(dp), intent(in) :: pa(:)                 !! (npair) after it
+      character(len=:), allocatable :: text
+      integer :: j, n, jw
+      real(dp) :: r, rw, ures
+      text = ''
+      n = 0
+      jw = 0
+      rw = 0.0_dp
+      if (.not. allocated(c%pairs) .or. .not. allocated(c%ifaces)) return
+      do j = 1, min(size(pa_old), size(pa), size(c%pairs))
+         if (.not. (pa(j) > pa_old(j))) cycle
+         associate (f => c%ifaces(c%pairs(j)%iface))
+            if (f%law /= LAW_ROUGH .or. .not. (pa(j) > f%p_reversal_max)) cycle
+            n = n + 1
+            r = pa(j)/f%p_reversal_max
+            if (r > rw) then
+               rw = r
+               jw = j
+            end if
+         end associate
+      end do
+      if (n == 0) return
+      associate (f => c%ifaces(c%pairs(jw)%iface), pr => c%pairs(jw))
+         text = 'increment '//itoa(step)//': '//itoa(n)//' pair(s) unload from beyond the admissible range of '// &
+                'their unloading law; the farthest: pair '//itoa(jw)//' (nodes '//itoa(pr%node_a)//'-'// &
+                itoa(pr%node_b)//', interface '//itoa(pr%iface)//') from p_A = '//pressure_text(pa(jw), f%units)// &
+                ' > p* = '//pressure_text(f%p_reversal_max, f%units)
+         ures = f%cn*pa(jw)**f%m - f%cn2*pa(jw)**f%m2
+         if (ures < 0.0_dp) then
+            text = text//': its residual closure u_A - c_n2 p_A^m2 = '//rtoa(ures)// &
+                   trim(merge(' (model units)', ' mm           ', f%units == UNITS_MODEL))//' < 0 is taken as 0 '// &
+                   '(unloading along u = u_A (p/p_A)^m2; docs/contact.md)'
+         else
+            text = text//': its unloading branch is softer than loading at A, followed as given (docs/contact.md)'
+         end if
+      end associate
+   end function reversal_warning
+
+   !> The pairs of a step that took a reversal point beyond the admissible
+   !! range of their unloading law (reversal_warning): the warning on the
+   !! terminal (the error unit, as every warning) and in the listing, and in
+   !! the step record (the increment's attribute `warnings` of the result
+   !! file); counted in nwarn.
+   subroutine list_reversals(c, pa_old, pa, step, lu, have_lis, nwarn)
+      type(contact_def_t), intent(in) :: c
+      real(dp), intent(in) :: pa_old(:), pa(:)      !! (npair) reversal pressures before and after the step
+      type(step_record_t), intent(inout) :: step    !! the step (its number; warnings set)
+      integer, intent(in) :: lu                     !! listing unit
+      logical, intent(in) :: have_lis               !! a listing is written
+      integer, intent(inout) :: nwarn               !! warnings of the run
+      step%warnings = reversal_warning(c, step%step, pa_old, pa)
+      if (len(step%warnings) == 0) return
+      write (stderr, '(a)') 'kontakt2d: warning: '//step%warnings
+      if (have_lis) write (lu, '(a)') ' WARNING: '//step%warnings
+      nwarn = nwarn + 1
+   end subroutine list_reversals
+
+   !> A pressure of the model with its unit, and in kgf/cm2 for UNITS KGF_UM.
+   pure function pressure_text(p, units) result(text)
+      real(dp), intent(in) :: p                     !! pressure in model units
+      integer, intent(in) :: units                  !! UNITS of the interface
+      character(len=:), allocatable :: text
+      if (units == UNITS_MODEL) then
+         text = rtoa(p)//' (model units)'
+      else
+         text = rtoa(p)//' N/mm2'
+         if (units == UNITS_KGF_UM) text = text//' ('//rtoa(p*KGF_PER_NMM2)//' kgf/cm2)'
+      end if
+   end function pressure_text
 
    !> In-plane principal stresses and the angle (degrees) of the first from x.
    pure subroutine principal_stresses(sig, s1, s2, angle)

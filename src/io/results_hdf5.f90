@@ -297,6 +297,9 @@ contains
       if (allocated(step%doubts)) then
          if (len(step%doubts) > 0) call attr_string(gid, 'doubts', step%doubts, err)
       end if
+      if (allocated(step%warnings)) then
+         if (len(step%warnings) > 0) call attr_string(gid, 'warnings', step%warnings, err)
+      end if
       call attr_int(gid, 'deck_increment', step%deck_increment, err)
       call attr_real0(gid, 'deck_increment_fraction', step%fraction, err)
       call attr_int(gid, 'cuts', step%cuts, err)

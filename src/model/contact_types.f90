@@ -73,6 +73,8 @@ module contact_types
       real(dp) :: m = 0.0_dp
       real(dp) :: cn2 = 0.0_dp         !! unloading: u = u_A - cn2 (p_A^m2 - p^m2)
       real(dp) :: m2 = 0.0_dp
+      real(dp) :: p_reversal_max = huge(1.0_dp) !! largest reversal pressure of an admissible unloading branch
+                                                !! (contact_laws' admissible_reversals, set by contact_definition)
       real(dp) :: s = 0.0_dp           !! k_T^e = p^S / r_t
       real(dp), allocatable :: r_t(:)  !! per pair of this interface (R depends on nu when computed)
       ! tangential law and friction

@@ -82,6 +82,8 @@ module records
                                              !! reactions, imbalance (written, listed or last steps of a contact run)
       character(len=:), allocatable :: doubts  !! why the step is doubtful ('' if it is not): frozen
                                                !! states, drift, violations, naming the pairs
+      character(len=:), allocatable :: warnings  !! what the step did beyond the laws' range, though not
+                                                 !! doubtful (unloading beyond p*), naming the pairs ('' if nothing)
    end type step_record_t
 
    !> Nodal and Gauss-point fields of the bodies after a step.

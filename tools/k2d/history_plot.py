@@ -256,7 +256,7 @@ def _fmt_residual(h, a, b):
 
 
 def residual_after(h, a, b):
-    """The permanent set u_A - c_n2 p_A^m2 left in the pairs by the unloading stage a..b (the
+    """The permanent set max(u_A - c_n2 p_A^m2, 0) left in the pairs by the unloading stage a..b (the
     reversal point A of each pair: its last loading state before the stage), largest over the
     pairs that left the virgin curve in the stage (SPEC D8); NaN when none did."""
     if a == 0:
@@ -277,6 +277,7 @@ def residual_after(h, a, b):
                 str(law.get("law", "")).upper() != "ROUGH":
             continue
         cn2, m2 = (float(v) for v in np.atleast_1d(law["normal_model"])[2:4])
-        r = ua[j] - cn2 * pa[j] ** m2
+        # max(u_res, 0): beyond the law's admissible range p* (docs/contact.md)
+        r = max(ua[j] - cn2 * pa[j] ** m2, 0.0)
         best = r if np.isnan(best) else max(best, r)
     return best

@@ -1,0 +1,58 @@
+# Run kontakt2d on a deck with a listing and check what it tells the user (issue 22, items 5, 6a).
+#   cmake -DEXE=... -DDECK=... -DWORK=... -DNAME=... -DCASE=beyond|held [-DH5DUMP=...] -P run_robust_law.cmake
+# beyond: unload_beyond_range.dat, its reversal at p_A = 1 N/mm2 beyond p* = (25/24)^10 kgf/cm2
+#   = 0.147506 N/mm2 (contact.md): exit 0; the warning on the terminal (stderr), in the listing and
+#   as the attribute `warnings` of increment 11 (the reversal) of the result file, naming the
+#   pairs, p_A and p*; p* in the listing's interface table; the summary's residual closure 0, not
+#   negative, and its line on the pairs beyond the range.
+# held: a tangential cycle under held pressure: exit 0, the summary printed, no residual closure.
+set(out "${WORK}/${NAME}.h5")
+set(lis "${WORK}/${NAME}.lis")
+file(REMOVE "${out}" "${lis}")
+execute_process(COMMAND "${EXE}" "${DECK}" -o "${out}" -l "${lis}"
+  RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT rc STREQUAL "0")
+  message(FATAL_ERROR "expected exit code 0, got '${rc}'\nstdout:\n${stdout}\nstderr:\n${stderr}")
+endif()
+file(READ "${lis}" listing)
+if(NOT stdout MATCHES "SUMMARY OF THE RUN" OR NOT listing MATCHES "SUMMARY OF THE RUN")
+  message(FATAL_ERROR "no summary on the terminal or in the listing:\n${stdout}")
+endif()
+if(CASE STREQUAL "held")
+  foreach(text IN ITEMS stdout listing)
+    if(${text} MATCHES "residual closure|permanent set")
+      message(FATAL_ERROR "a run that never unloaded reports a residual closure (${text}):\n${${text}}")
+    endif()
+  endforeach()
+  return()
+endif()
+# p_A = 1.00000E+00 N/mm2, p* = 1.47506E-01 N/mm2 (1.50414E+00 kgf/cm2), pair 5 of the 5
+set(warning_re "increment 11: 5 pair\\(s\\) unload from beyond the admissible range of their unloading law; the farthest: pair 5 [^\n]*p_A = 1\\.00000E\\+00 N/mm2 [^\n]*> p\\* = 1\\.47506E-01 N/mm2 \\(1\\.50414E\\+00 kgf/cm2\\)[^\n]* is taken as 0")
+if(NOT stderr MATCHES "kontakt2d: warning: ${warning_re}")
+  message(FATAL_ERROR "no warning on the terminal matching\n${warning_re}\nstderr:\n${stderr}")
+endif()
+if(NOT listing MATCHES " WARNING: ${warning_re}")
+  message(FATAL_ERROR "no warning in the listing ${lis} matching\n${warning_re}")
+endif()
+if(NOT listing MATCHES "unloading branch admissible [^\n]* up to p\\* = 1\\.47506E-01 N/mm2")
+  message(FATAL_ERROR "the listing ${lis} does not give the admissible range of the interface")
+endif()
+foreach(text IN ITEMS stdout listing)
+  if(NOT ${text} MATCHES "residual closure +0\\.0000E\\+00 mm")
+    message(FATAL_ERROR "the summary (${text}) does not give a residual closure of 0:\n${${text}}")
+  endif()
+  if(NOT ${text} MATCHES "unloading law +5 pair\\(s\\) reversed beyond the law's admissible range; the farthest: pair 5")
+    message(FATAL_ERROR "the summary (${text}) does not name the pairs beyond the range:\n${${text}}")
+  endif()
+endforeach()
+if(H5DUMP)
+  execute_process(COMMAND "${H5DUMP}" -a /increments/00011/warnings "${out}" OUTPUT_VARIABLE attr RESULT_VARIABLE rc2)
+  string(REGEX REPLACE "\"[ \n]*\"" "" attr "${attr}")
+  if(NOT rc2 STREQUAL "0" OR NOT attr MATCHES "${warning_re}")
+    message(FATAL_ERROR "increment 11 of ${out} does not record the warning:\n${attr}")
+  endif()
+  execute_process(COMMAND "${H5DUMP}" -a /increments/00012/warnings "${out}" OUTPUT_QUIET ERROR_QUIET RESULT_VARIABLE rc3)
+  if(rc3 STREQUAL "0")
+    message(FATAL_ERROR "increment 12 of ${out} has a warning: the reversal happened once, in increment 11")
+  endif()
+endif()
