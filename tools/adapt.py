@@ -13,7 +13,7 @@ pressure, contact width, approach, largest von Mises stress, slip zone) are extr
 Richardson's rule with their estimated error.
 
 DIR (default results/<deck name>_adapt/) gets the final result as tools/run.sh leaves it
-(<name>.h5, .xdmf, .lis, .png), the convergence table <name>_adapt.md and .csv (DOFs,
+(<name>.h5, .xdmf, .lis, .png; with contact the history plots and <name>_stages.md), the convergence table <name>_adapt.md and .csv (DOFs,
 estimated error, key outputs, CPU seconds per step), the chart <name>_adapt.png (error against
 DOFs and against CPU time) and every step's deck, mesh and result under steps_*/.
 Exit code 0 when the target was reached, 1 when the budget or the step limit ended the
@@ -80,6 +80,8 @@ def main(argv=None):
     tools = os.path.dirname(os.path.abspath(__file__))
     subprocess.call([sys.executable, os.path.join(tools, "plot_results.py"), h5, "-o", os.path.join(out, name + ".png")],
                     stdout=subprocess.DEVNULL)
+    subprocess.call([sys.executable, os.path.join(tools, "plot_history.py"), h5, "--stages-file",
+                     os.path.join(out, name + "_stages.md")], stdout=subprocess.DEVNULL)
     print("table: %s (and .csv); chart: %s; result: %s" % (md, png, h5))
     return 0 if first[-1]["estimated_error"] <= args.target else 1
 

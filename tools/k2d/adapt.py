@@ -537,6 +537,10 @@ def refine_card_deck(deck, target, max_dofs, out, exe, min_levels=3, max_levels=
     error is below `target` (after at least `min_levels` meshes, for Richardson) or the next
     level would exceed `max_dofs`.  Returns the rows of the table."""
     from .refine import RefineError, read_card_deck, refine_deck
+    try:
+        read_card_deck(deck)        # what the splitting cannot take is refused before any run
+    except RefineError as e:
+        raise AdaptError(str(e))
     mats = deck_materials(deck)
     name = os.path.splitext(os.path.basename(deck))[0]
     wdir = os.path.join(out, "steps_uniform")
