@@ -103,8 +103,10 @@ class CardDeck(unittest.TestCase):
         shutil.rmtree(cls.work, ignore_errors=True)
 
     def solve(self, deck):
-        h5 = os.path.splitext(deck)[0] + ".h5"
-        rc = subprocess.call([self.exe, deck, "-o", h5, "-q"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        base = os.path.join(self.work, os.path.splitext(os.path.basename(deck))[0])
+        h5 = base + ".h5"
+        rc = subprocess.call([self.exe, deck, "-o", h5, "-l", base + ".lis", "-q"], stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL)
         self.assertIn(rc, (0, 4), deck)      # 4: the explicit scheme's drift in the V1 decks (their own checks say so)
         return Result(h5)
 
