@@ -633,14 +633,16 @@ def write_tables(rows, rich, out, name, deck, target, max_dofs):
         rb = []
         for k, label in OUTPUTS:
             v = rich[k]
-            rb.append([label, final[k], v["order"], v["extrapolated"], v["error"], v["note"]])
+            rb.append([label, final[k], v["order"], v["extrapolated"], v["error"], v["gci"], v["note"]])
         md.append(markdown_table("Richardson extrapolation of the last three meshes (h, h/2, h/4)",
                                  ["output", "finest", "observed order p", "extrapolated", "error of the finest",
-                                  "note"], rb, {"finest": "%.6g", "observed order p": "%.2f",
-                                                "extrapolated": "%.6g", "error of the finest": "%.3g"}))
-        md.append("p = log2((f1 - f2)/(f2 - f3)), f_ext = f3 + (f3 - f2)/(2^p - 1) (Richardson 1911); "
+                                  "GCI", "note"], rb, {"finest": "%.6g", "observed order p": "%.2f",
+                                                       "extrapolated": "%.6g", "error of the finest": "%.3g",
+                                                       "GCI": "%.3g"}))
+        md.append("p = log2((f1 - f2)/(f2 - f3)), f_ext = f3 + (f3 - f2)/(2^p - 1) (Richardson 1911); GCI = "
+                  "1.25 |f3 - f2| / |f3| / (2^p - 1), the grid convergence index (Roache 1998, relative); "
                   "a sequence that oscillates or does not converge is not in the asymptotic range, and its error "
-                  "is Roache's (1998) safety-factor estimate 3 |f3 - f2|.\n")
+                  "is Roache's safety-factor estimate 3 |f3 - f2| (its GCI that relative to |f3|).\n")
     scheme = final.get("scheme") or ""
     if scheme:
         md += ["### Increment size", "",
