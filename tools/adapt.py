@@ -6,16 +6,17 @@
 
 A deck with a MESH block whose .geo lies beside its .msh is remeshed by gmsh: adaptively, from
 a size field made of the error indicators of the last run (the program's `error_indicator`
-when the result file has it, else the stress-jump estimate of k2d.adapt), or with --uniform by
+when the result file has it, else the patch-recovery estimate of k2d.adapt), or with --uniform by
 halving the .geo's sizes; --compare runs both.  A card deck (ELEMENTS and NODES) is refined
 uniformly, every element split into four, for at least three meshes, and the key outputs (peak
 pressure, contact width, approach, largest von Mises stress, slip zone) are extrapolated by
 Richardson's rule with their estimated error.
 
 DIR (default results/<deck name>_adapt/) gets the final result as tools/run.sh leaves it
-(<name>.h5, .xdmf, .lis, .png; with contact the history plots and <name>_stages.md), the convergence table <name>_adapt.md and .csv (DOFs,
-estimated error, key outputs, CPU seconds per step), the chart <name>_adapt.png (error against
-DOFs and against CPU time) and every step's deck, mesh and result under steps_*/.
+(<name>.h5, .xdmf, .lis, .png; with contact the history plots and <name>_stages.md), the
+convergence table <name>_adapt.md and .csv (DOFs, estimated error, key outputs, CPU seconds per
+step), the chart <name>_adapt.png (error against DOFs and against CPU time) and every step's
+deck, mesh and result under steps_*/.
 Exit code 0 when the target was reached, 1 when the budget or the step limit ended the
 refinement first, 2 for a bad request, 3 when a run failed.
 """
@@ -78,8 +79,8 @@ def main(argv=None):
     first = [r for r in rows if r["method"] == rows[0]["method"]]
     h5 = ad.publish(first[-1]["h5"], out, name)
     tools = os.path.dirname(os.path.abspath(__file__))
-    subprocess.call([sys.executable, os.path.join(tools, "plot_results.py"), h5, "-o", os.path.join(out, name + ".png")],
-                    stdout=subprocess.DEVNULL)
+    subprocess.call([sys.executable, os.path.join(tools, "plot_results.py"), h5,
+                     "-o", os.path.join(out, name + ".png")], stdout=subprocess.DEVNULL)
     subprocess.call([sys.executable, os.path.join(tools, "plot_history.py"), h5, "--stages-file",
                      os.path.join(out, name + "_stages.md")], stdout=subprocess.DEVNULL)
     print("table: %s (and .csv); chart: %s; result: %s" % (md, png, h5))

@@ -17,7 +17,8 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt.py [-v] [CLAS
   Richardson extrapolation of the largest von Mises stress against the closed form at the bore;
   a deck with TIES is refused with exit code 2 and a message naming file, line and TIES.
 * Sizes: the size formula equidistributes the error (every new element the same share) and
-  meets the target; the program's `error_indicator` is used when a result file has it.
+  meets the target; the program's `error_indicator` is used when a result file has it; the
+  contact tractions ask for their smallest elements at the edge of the punch, sizes ~ sqrt(target).
 * GeoDeck: tools/adapt.py on a small punch-on-foundation .geo deck reaches the target, and
   adaptive remeshing reaches it with fewer DOFs than uniform remeshing; a MESH deck without its
   .geo is refused with exit code 2.
@@ -260,6 +261,26 @@ class GeoDeck(unittest.TestCase):
         dist = np.hypot(centre[:, 0] - 25.0, centre[:, 1])
         # the stress singularity at the punch's edge (25, 0) gets the smallest elements
         self.assertLess(np.median(h[dist < 3.0]), 0.5 * np.median(h[dist > 20.0]))
+
+    def test_traction_sizes(self):
+        r = Result(os.path.join(self.out, "steps_adaptive", "punch_adapt_01.h5"))
+        want = ad.traction_sizes(r, 0.01)
+        self.assertTrue(want)
+        punch = set(int(n) - 1 for n in r.contact.node_a)
+        node = min((n for n in want if n in punch), key=want.get)
+        x, y = r.mesh.coordinates[node]
+        # the pressure bends most towards the edge of the punch (x = 25): the punch node asking
+        # for the smallest size lies in the punch's outer quarter (measured: x = 22.0)
+        self.assertGreater(x, 18.75)
+        self.assertAlmostEqual(y, 0.0, delta=1e-9)
+        # h ~ sqrt(target): a target four times larger allows twice the size, at every node
+        want4 = ad.traction_sizes(r, 0.04)
+        for n, v in want.items():
+            self.assertAlmostEqual(want4[n] / v, 2.0, delta=1e-12)
+        h, p = ad.element_sizes(r)
+        limited, count = ad.limit_by_tractions(r, np.full(len(h), 1e9), h, 0.01)
+        self.assertGreater(count, 0)
+        self.assertTrue(np.all(limited >= 0.2 * h - 1e-12))
 
     def test_program_indicator_used(self):
         r = Result(os.path.join(self.out, "steps_adaptive", "punch_adapt_00.h5"))

@@ -24,7 +24,6 @@ so that the global relative energy-norm estimate is sqrt(sum eta_e^2), the progr
 """
 import math
 import os
-import re
 import shutil
 import subprocess
 import time
@@ -439,6 +438,68 @@ def new_sizes(eta, h, p, target, max_elements=None, shrink=(0.2, 2.0), safety=0.
     return s * h, n_new
 
 
+def traction_sizes(result, target):
+    """The element sizes the contact tractions ask for: along each interface, in the order of the
+    pairs' positions, the pressure's second difference p'' at a pair between two others (one of
+    the three closed) bounds the error of its interpolation over an edge of length h by
+    h^2 |p''| / 8; keeping it below target times the interface's peak pressure asks for
+    h <= sqrt(8 target p_max / |p''|) at the pair's nodes (node a, and node b or the nodes of
+    surface B under it).  Returns {node index (0-based): size}, empty without contact."""
+    c = result.contact
+    if c is None:
+        return {}
+    last = result.last
+    p = last.contact("pressure")
+    closed = last.contact("normal_state") > 0
+    pos = c.position
+    want = {}
+    for itf in np.unique(c.interface):
+        k = np.where(c.interface == itf)[0]
+        axis = 0 if np.ptp(pos[k, 0]) >= np.ptp(pos[k, 1]) else 1
+        k = k[np.argsort(pos[k, axis])]
+        pk = p[k]
+        pmax = float(np.max(np.where(closed[k], pk, 0.0))) if np.any(closed[k]) else 0.0
+        if pmax <= 0.0 or len(k) < 3:
+            continue
+        s = pos[k, axis]
+        for j in range(1, len(k) - 1):
+            if not closed[k[j - 1:j + 2]].any():
+                continue
+            h1, h2 = s[j] - s[j - 1], s[j + 1] - s[j]
+            if h1 <= 0.0 or h2 <= 0.0:
+                continue
+            d2 = 2.0 * (h1 * pk[j + 1] - (h1 + h2) * pk[j] + h2 * pk[j - 1]) / (h1 * h2 * (h1 + h2))
+            if d2 == 0.0:
+                continue
+            hreq = math.sqrt(8.0 * target * pmax / abs(d2))
+            nodes = [int(c.node_a[k[j]]) - 1]
+            if "master_nodes" in c:
+                nodes += [int(v) - 1 for v, w in zip(c.master_nodes[k[j]], c.master_weights[k[j]]) if v > 0 and w > 0]
+            else:
+                nodes.append(int(c.node_b[k[j]]) - 1)
+            for n in nodes:
+                want[n] = min(want.get(n, np.inf), hreq)
+    return want
+
+
+def limit_by_tractions(result, hnew, h, target, shrink=0.2):
+    """hnew with the sizes of the elements at the contact pairs limited by traction_sizes (never
+    below shrink times their present size); returns (sizes, number of elements limited)."""
+    want = traction_sizes(result, target)
+    if not want:
+        return hnew, 0
+    out = hnew.copy()
+    limited = 0
+    m = result.mesh
+    for e in range(len(out)):
+        nodes = m.connectivity[e, :m.element_nodes[e]] - 1
+        w = min((want[n] for n in nodes if n in want), default=np.inf)
+        if w < out[e]:
+            out[e] = max(w, shrink * h[e])
+            limited += 1
+    return out, limited
+
+
 def write_size_view(path, result, hnew):
     """A gmsh post-processing view (.pos) of the sizes at the corners of the current mesh: the
     smallest of the sizes wanted by the elements around each node."""
@@ -526,6 +587,7 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
             break
         t0 = time.process_time()
         hnew, n_new = new_sizes(eta, h, p, target, max_el)
+        hnew, row["traction_limited"] = limit_by_tractions(r, hnew, h, target)
         pos = base + "_size.pos"
         write_size_view(pos, r, hnew)
         row["cpu_mesh"] += time.process_time() - t0
@@ -586,14 +648,10 @@ def richardson_table(rows):
     return {k: richardson(a[k], b[k], c[k]) for k, _ in OUTPUTS}
 
 
-def _safe(name):
-    return re.sub(r"[^A-Za-z0-9_.-]", "_", name)
-
-
 # ------------------------------------------------------------------------------- the report
 COLUMNS = ["method", "step", "elements", "dofs", "estimated_error", "source", "cpu_solve", "cpu_mesh",
            "cpu_cumulative", "peak_pressure", "width", "approach", "von_mises", "slip_share", "scheme",
-           "law_drift", "residual", "exit"]
+           "law_drift", "residual", "traction_limited", "exit"]
 
 
 def cumulate(rows):
@@ -647,7 +705,8 @@ def write_tables(rows, rich, out, name, deck, target, max_dofs):
     if scheme:
         md += ["### Increment size", "",
                "Scheme %s; the largest law drift over the increments of the final mesh is %.3g (the normal spring "
-               "forces' distance from the interface law, relative to the largest force)." % (scheme, final["law_drift"]),
+               "forces' distance from the interface law, relative to the largest force)."
+               % (scheme, final["law_drift"]),
                ("The explicit (INCREMENTAL) scheme drifts off the law by about 1/N for N loading increments: "
                 "this drift is its increment-size error, and more increments reduce it."
                 if scheme.upper() in ("EXPLICIT", "INCREMENTAL") else

@@ -23,8 +23,6 @@ The split (docs/adaptivity.md):
   PAIRS cards (their areas and gaps belong to the coarse mesh), more than 99999 nodes or
   elements (I5 fields).
 """
-import math
-
 from .deck import f10
 
 KEYWORDS = ("TITLE", "CONTROL", "OPTIONS", "MESH", "ELEMENTS", "NODES", "RESTRAINTS", "TIES",
@@ -430,8 +428,3 @@ def refine_file(src, dst, note=""):
         f.write(text)
     return deck
 
-
-def element_size_note(level):
-    """The header comment of a refined deck."""
-    return "every element of the original split into 4^%d = %d (tools/adapt.py, level %d)" % (
-        level, int(math.pow(4, level)), level)
