@@ -15,7 +15,8 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt.py [-v] [CLAS
   stress is round-off (1e-9).  Lame's cylinder through tools/adapt.py: three meshes of 8, 32,
   128 elements; the estimate against the exact energy-norm error from the closed form, and the
   Richardson extrapolation of the largest von Mises stress against the closed form at the bore;
-  a deck with TIES is refused with exit code 2 and a message naming file, line and TIES.
+  the V2 tangential patch test (a tied rigid plate) stays exact after splitting; a deck with
+  contact PAIRS is refused with exit code 2 and a message naming file, line and PAIRS.
 * Sizes: the size formula equidistributes the error (every new element the same share) and
   meets the target; the program's `error_indicator` is used when a result file has it; the
   contact tractions ask for their smallest elements at the edge of the punch, sizes ~ sqrt(target).
@@ -191,11 +192,38 @@ class CardDeck(unittest.TestCase):
         # and the error it states for the finest mesh is that mesh's error within 20 %
         self.assertAlmostEqual(err / abs(finest - vm), 1.0, delta=0.2)
 
-    def test_ties_refused(self):
-        deck = os.path.join(CONTACT, "v2_tangential.dat")
-        rc, text = run_tool(deck, "--target", "0.1", "-o", os.path.join(self.work, "ties"), "--exe", self.exe)
+    def test_tied_plate_survives_splitting(self):
+        # V2: a block pressed by a force on its tied top face (TIES 01: a rigid plate) and sheared
+        # by a prescribed displacement; p_n = 1 and p_T = -0.1 at every pair after splitting (the
+        # splitting keeps the deck's restraints, loads, surfaces and ties consistent).  The block
+        # is so stiff that new top nodes left out of the tie would not show in p_n: the tie's
+        # members are counted below.
+        decks = [os.path.join(CONTACT, "v2_tangential.dat")]
+        for level in (1, 2):
+            decks.append(os.path.join(self.work, "v2_tangential_%d.dat" % level))
+            refine_file(decks[-2], decks[-1])
+        for k, deck in enumerate(decks):
+            r = self.solve(deck)
+            with self.subTest(level=k):
+                self.assertEqual(r.contact.npair, 2 ** k * 4 + 1)
+                # the coarse deck is off by 3e-10; the stiff block (E = 1e9 on springs of
+                # 100 N/mm3) magnifies round-off with the number of equations (measured 6e-9 on
+                # the finest): 1e-7
+                np.testing.assert_allclose(r.last.contact("pressure"), 1.0, rtol=1e-7)
+                np.testing.assert_allclose(r.last.contact("shear"), -0.1, rtol=1e-7)
+        d = read_card_deck(decks[2])
+        tied = set()
+        for code, ids in d.ties:
+            self.assertEqual(code, "01")
+            tied.update(ids)
+        self.assertEqual(len(tied), 17)        # the 5 nodes of the top face, 17 after two splittings
+
+    def test_pairs_refused(self):
+        deck = os.path.join(ROOT, "tests", "decks", "bad", "bad_contact_pair_no_area.dat")
+        rc, text = run_tool(deck, "--target", "0.1", "-o", os.path.join(self.work, "pairs"), "--exe", self.exe)
         self.assertEqual(rc, 2, text)
-        self.assertRegex(text, r"v2_tangential\.dat:\d+: TIES are not supported")
+        self.assertRegex(text, r"bad_contact_pair_no_area\.dat:\d+: contact PAIRS cards are not supported")
+        self.assertNotIn("level 0", text)      # refused before any run
         self.assertNotIn("Traceback", text)
         with self.assertRaises(RefineError):
             read_card_deck(deck)

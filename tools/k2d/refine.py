@@ -19,7 +19,9 @@ The split (docs/adaptivity.md):
 * POINT loads stay on their nodes; an EDGE load is split into the two child edges, its values
   interpolated with the edge's shape functions; BODY loads, materials, options, the contact
   laws and the load history are copied.
-* Not supported (RefineError names it): a MESH block (refine the .geo instead), TIES, contact
+* TIES are copied; a new node on a boundary edge between two nodes tied to the same node in a
+  direction is tied to it in that direction too (a rigid plate's face stays rigid).
+* Not supported (RefineError names it): a MESH block (refine the .geo instead), contact
   PAIRS cards (their areas and gaps belong to the coarse mesh), more than 99999 nodes or
   elements (I5 fields).
 """
@@ -75,6 +77,7 @@ class CardDeck:
         self.elements = {}        # k -> (mat, [nodes])
         self.nodes = {}           # k -> (x, y)
         self.restraints = {}      # node -> [code "xy", ux, uy, case]
+        self.ties = []            # (code "xy", [first node, nodes tied to it])
         self.materials = {}       # mat -> (E, nu, thick)
         self.material_cards = []
         self.point = []           # raw POINT cards
@@ -89,7 +92,7 @@ def read_card_deck(path):
     """Read the deck at `path` (docs/deck-format.md) into a CardDeck; RefineError for a deck the
     splitter does not support, naming the file, the line and what is unsupported."""
     d = CardDeck(path)
-    block, sub = None, None
+    block, sub, control_where = None, None, path
     expect_title = False
     surface = None
     with open(path) as f:
@@ -114,21 +117,19 @@ def read_card_deck(path):
             elif word == "MESH":
                 raise RefineError("%s: the deck has a MESH block: refine its .geo (tools/adapt.py does, "
                                   "with gmsh) rather than the cards" % where)
-            elif word == "TIES":
-                raise RefineError("%s: TIES are not supported by the uniform refinement (which new nodes "
-                                  "a tie should take is not defined by the cards)" % where)
             elif word == "END":
                 break
             continue
         if block == "CONTROL":
             d.control = line
             d.ntype = _int(line, 16, 20, where, "NTYPE")
-            d.nnode = _int(line, 21, 25, where, "NNODE")
-            if d.nnode not in (3, 4, 8, 9):
-                raise RefineError("%s: NNODE = %d: expected 3, 4, 8 or 9" % (where, d.nnode))
+            d.nnode = _int(line, 21, 25, where, "NNODE", 0)
+            control_where = where
         elif block == "OPTIONS":
             d.options.append(line)
         elif block == "ELEMENTS":
+            if d.nnode not in (3, 4, 8, 9):
+                raise RefineError("%s: NNODE = %d: expected 3, 4, 8 or 9" % (control_where, d.nnode))
             k = _int(line, 1, 5, where, "IELEM")
             mat = _int(line, 6, 10, where, "MATNO")
             c = [_int(line, 11 + 5 * i, 15 + 5 * i, where, "NODE%d" % (i + 1)) for i in range(d.nnode)]
@@ -143,6 +144,13 @@ def read_card_deck(path):
             code = _field(line, 6, 10).zfill(2)
             d.restraints[k] = [code, _real(line, 11, 20, where, "UX", 0.0), _real(line, 21, 30, where, "UY", 0.0),
                                _int(line, 31, 35, where, "CASE", 1)]
+        elif block == "TIES":
+            code = _field(line, 1, 5).zfill(2)
+            ids = [_int(line, 6 + 5 * i, 10 + 5 * i, where, "N%d" % (i + 1)) for i in range(15)
+                   if _field(line, 6 + 5 * i, 10 + 5 * i)]
+            if code not in ("10", "01", "11") or len(ids) < 2:
+                raise RefineError("%s: a TIES card needs CODE 10, 01 or 11 and at least two nodes" % where)
+            d.ties.append((code, ids))
         elif block == "MATERIALS":
             m = _int(line, 1, 5, where, "MATNO")
             d.materials[m] = (_real(line, 6, 15, where, "E"), _real(line, 16, 25, where, "NU"),
@@ -340,6 +348,27 @@ def refine_deck(deck, note=""):
         ux = 0.5 * (fl[1] + fr[1]) if code[0] == "1" else 0.0
         uy = 0.5 * (fl[2] + fr[2]) if code[1] == "1" else 0.0
         fixes[nd] = [code, ux, uy, fl[3]]
+    # ties: the group (first node) of every tied node in each direction; a new node between two
+    # nodes of one group in a direction joins it there (a rigid plate's face stays rigid)
+    group = [{}, {}]
+    for code, ids in deck.ties:
+        for i in range(2):
+            if code[i] == "1":
+                for n in ids:
+                    group[i][n] = ids[0]
+    new_ties = {}
+    for nd, left, right in on_bnd:
+        for i in range(2):
+            g = group[i].get(left)
+            if g is not None and g == group[i].get(right) and fixes.get(nd, ["00"])[0][i] != "1":
+                new_ties.setdefault(g, [set(), set()])[i].add(nd)
+    tie_cards = ["%5s" % code + "".join(I5 % n for n in ids) for code, ids in deck.ties]
+    for g in sorted(new_ties):
+        both = sorted(new_ties[g][0] & new_ties[g][1])
+        for code, lst in (("11", both), ("10", sorted(new_ties[g][0] - set(both))),
+                          ("01", sorted(new_ties[g][1] - set(both)))):
+            for k in range(0, len(lst), 14):
+                tie_cards.append("%5s" % code + I5 % g + "".join(I5 % n for n in lst[k:k + 14]))
     # the cards
     L = list(deck.header)
     if note:
@@ -358,6 +387,8 @@ def refine_deck(deck, note=""):
     for k in sorted(fixes):
         code, ux, uy, case = fixes[k]
         L.append((I5 % k + "%5s" % code + f10(ux) + f10(uy) + I5 % case).rstrip())
+    if tie_cards:
+        L += ["TIES"] + tie_cards
     L.append("MATERIALS")
     L += deck.material_cards
     if deck.point or deck.edge or deck.body:
