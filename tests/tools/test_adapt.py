@@ -21,8 +21,9 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt.py [-v] [CLAS
   meets the target; the program's `error_indicator` is used when a result file has it; the
   contact tractions ask for their smallest elements at the edge of the punch, sizes ~ sqrt(target).
 * GeoDeck: tools/adapt.py on a small punch-on-foundation .geo deck reaches the target, and
-  adaptive remeshing reaches it with fewer DOFs than uniform remeshing; a MESH deck without its
-  .geo is refused with exit code 2.
+  adaptive remeshing reaches it with fewer DOFs than uniform remeshing; no mesh exceeds the DOF
+  budget (exit code 1 when it ends the refinement); a MESH deck without its .geo is refused with
+  exit code 2.
 """
 
 import csv
@@ -335,6 +336,16 @@ class GeoDeck(unittest.TestCase):
         self.assertEqual(int(np.argmin(hnew / h)), 5)
         # without the dataset: the recovery estimate
         self.assertEqual(ad.indicator(r, ad.deck_materials(self.deck))[2], "stress recovery")
+
+    def test_budget(self):
+        out = os.path.join(self.work, "budget")
+        rc, text = run_tool(self.deck, "--target", "0.001", "--max-dofs", "3000", "-o", out, "--exe", self.exe)
+        self.assertEqual(rc, 1, text)            # the budget ends it before the target
+        rows = read_rows(os.path.join(out, "punch_adapt_adapt.csv"))
+        self.assertGreater(len(rows), 1)
+        self.assertTrue(all(int(r["dofs"]) <= 3000 for r in rows), [r["dofs"] for r in rows])
+        with open(os.path.join(out, "punch_adapt_adapt.md")) as f:
+            self.assertIn("**Not reached**", f.read())
 
     def test_mesh_deck_without_geo(self):
         d = os.path.join(self.work, "nogeo")
