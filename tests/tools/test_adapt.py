@@ -154,6 +154,29 @@ class CardDeck(unittest.TestCase):
         self.assertEqual(len(d.edge), 2)               # the loaded edge 2-3 in two halves
         self.solve(out)
 
+    def test_q9_split(self):
+        # one Q9 square 2 x 2 in uniform tension 1 (plane stress): after two splittings 16 Q9
+        # with their own centre nodes, and the stress is still exactly uniform
+        deck = os.path.join(self.work, "q9.dat")
+        xy = [(0, 0), (2, 0), (2, 2), (0, 2), (1, 0), (2, 1), (1, 2), (0, 1), (1, 1)]
+        with open(deck, "w") as f:
+            f.write("TITLE\nq9\nCONTROL\n    9    1    3    1    9    1    0\nELEMENTS\n    1    1"
+                    + "".join("%5d" % k for k in range(1, 10)) + "\nNODES\n"
+                    + "".join("%5d%10.1f%10.1f\n" % (k + 1, x, y) for k, (x, y) in enumerate(xy))
+                    + "RESTRAINTS\n    1   11\n    4   10\n    8   10\nMATERIALS\n    1    1000.0       0.3       1.0\n"
+                    + "LOADS\nEDGE\n    1    2    6    3      -1.0      -1.0      -1.0\nEND\n")
+        decks = [deck, os.path.join(self.work, "q9_1.dat"), os.path.join(self.work, "q9_2.dat")]
+        refine_file(decks[0], decks[1])
+        refine_file(decks[1], decks[2])
+        d = read_card_deck(decks[2])
+        self.assertEqual((len(d.nodes), len(d.elements)), (81, 16))
+        for mat, c in d.elements.values():      # the centre node is the mean of the corners
+            centre = np.mean([d.nodes[i] for i in c[:4]], axis=0)
+            np.testing.assert_allclose(d.nodes[c[8]], centre, atol=1e-12)
+        s = self.solve(decks[2]).last.field("stress_gauss")
+        np.testing.assert_allclose(s[:, 0], 1.0, atol=1e-10)   # a constant stress: round-off
+        np.testing.assert_allclose(s[:, 1:3], 0.0, atol=1e-10)
+
     def test_lame_cylinder(self):
         out = os.path.join(self.work, "lame")
         rc, text = run_tool(LAME, "--target", "0.5", "-o", out, "--exe", self.exe)

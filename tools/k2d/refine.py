@@ -291,7 +291,7 @@ def refine(deck):
                 else:
                     grid[i, j] = (("I", e, i, j), p)      # created only if a child uses it (not Q8's centres)
         for key in list(grid):
-            if isinstance(grid[key], tuple) and not (quad and key[0] % 2 == 1 and key[1] % 2 == 1):
+            if isinstance(grid[key], tuple) and not (nnode == 8 and key[0] % 2 == 1 and key[1] % 2 == 1):
                 grid[key] = new_node(*grid[key])
         s = 2 if quad else 1
         for b in range(2):
