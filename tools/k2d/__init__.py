@@ -12,6 +12,7 @@ lines on it (docs/DEVELOPERS.md, "The Python package tools/k2d").
     history          the figures of a run's history (approach, load stages, width, slip zone)
     history_plot     the history plots and the stage table (tools/plot_history.py, tools/run.sh)
     compare          a deck against a varied card, or two decks: runs and report (tools/compare.py)
+    adapt, refine    refinement to a requested accuracy; a card deck split uniformly (tools/adapt.py)
 
 Scripts in tools/ put the tools directory on sys.path and import from here,
 e.g. ``from k2d.results import Result``; ctest sets PYTHONPATH for the test checkers.

@@ -1,0 +1,781 @@
+"""Refinement to a requested accuracy: the library of tools/adapt.py (docs/adaptivity.md).
+
+    from k2d import adapt as ad
+    ad.deck_kind("plate_hole.dat")           # ("mesh", msh, geo) or ("cards", None, None)
+    r = Result("run.h5")
+    eta, est, source = ad.indicator(r, ad.deck_materials("plate_hole.dat"))
+    ad.key_outputs(r)                        # peak pressure, width, approach, von Mises, slip zone, drift
+    ad.richardson(f1, f2, f3)                # observed order, extrapolated value, error (3 levels h, h/2, h/4)
+    rows = ad.adapt_mesh_deck(deck, target, max_dofs, out, exe)        # gmsh remeshing
+    rows = ad.refine_card_deck(deck, target, max_dofs, out, exe)       # uniform splitting
+
+The error estimate of a run is the program's when its result file has it (per increment the
+dataset `error_indicator`, one eta_e per element, and the attribute `estimated_error`);
+otherwise it is computed here from the result file's Gauss-point stresses (Zienkiewicz & Zhu
+1987, 1992): the recovered stress sigma* is the nodal stress of superconvergent patch recovery
+(spr_stress: a polynomial of the element order fitted to the Gauss-point stresses of the
+elements around each corner node) interpolated with the element's shape functions to its
+Gauss points, and
+
+    e_e^2 = sum over the Gauss points of e of (sigma* - sigma_h) : C^-1 (sigma* - sigma_h) dV,
+    eta_e = e_e / sqrt(U^2 + sum e_e^2),   U^2 = sum sigma_h : C^-1 sigma_h dV,
+
+so that the global relative energy-norm estimate is sqrt(sum eta_e^2), the program's convention.
+"""
+import math
+import os
+import shutil
+import subprocess
+import time
+
+import numpy as np
+
+from .results import Result
+
+PROGRAM_INDICATOR = "error_indicator"       # per-element dataset of an increment group
+PROGRAM_ESTIMATE = "estimated_error"        # its attribute: the global relative estimate
+
+
+class AdaptError(Exception):
+    """A request tools/adapt.py cannot serve; the message says what and why."""
+
+
+# ------------------------------------------------------------------------------------ the deck
+def _card_word(line):
+    return line.split("#", 1)[0][:10].strip().upper()
+
+
+def deck_kind(path):
+    """("mesh", msh path, geo path or None) for a deck with a MESH block, ("cards", None, None)
+    otherwise.  The .geo is the one of the .msh's base name beside it (tools/run.sh's rule)."""
+    with open(path) as f:
+        for line in f:
+            if _card_word(line) == "GMSH":
+                msh = line.split("#", 1)[0][10:].strip()
+                if not os.path.isabs(msh):
+                    msh = os.path.join(os.path.dirname(os.path.abspath(path)), msh)
+                geo = os.path.splitext(msh)[0] + ".geo"
+                return "mesh", msh, geo if os.path.isfile(geo) else None
+    return "cards", None, None
+
+
+def deck_materials(path):
+    """{mat: (E, nu, thick)} from the MATERIALS block of a deck (either kind)."""
+    mats, block = {}, None
+    with open(path) as f:
+        for line in f:
+            s = line.split("#", 1)[0].rstrip()
+            if not s.strip():
+                continue
+            if s.lstrip()[0].isalpha():
+                block = s.split()[0].upper()
+                continue
+            if block == "MATERIALS":
+                try:
+                    thick = s[25:35].strip()
+                    mats[int(s[0:5])] = (float(s[5:15].replace("D", "e")), float(s[15:25].replace("D", "e")),
+                                         float(thick.replace("D", "e")) if thick else 1.0)
+                except ValueError:
+                    raise AdaptError("%s: a MATERIALS card that does not read: %r" % (path, s))
+    if not mats:
+        raise AdaptError("%s: no MATERIALS block" % path)
+    return mats
+
+
+def with_mesh_file(deck_text, msh):
+    """The deck's text with its GMSH card naming `msh` instead."""
+    out, done = [], False
+    for line in deck_text.splitlines():
+        if not done and _card_word(line) == "GMSH":
+            line = "%-10s%s" % ("GMSH", msh)
+            done = True
+        out.append(line)
+    return "\n".join(out) + "\n"
+
+
+# ------------------------------------------------------------------------- shape functions
+def _shape_deriv(nn, xi, eta):
+    """Shape functions (n, nn) and their derivatives (n, nn, 2) of the quadrilaterals."""
+    xi, eta = np.asarray(xi, float), np.asarray(eta, float)
+    if nn == 4:
+        a = np.array([-1, 1, 1, -1.0])
+        b = np.array([-1, -1, 1, 1.0])
+        X, E = xi[:, None], eta[:, None]
+        N = 0.25 * (1 + a * X) * (1 + b * E)
+        dN = np.stack([0.25 * a * (1 + b * E), 0.25 * b * (1 + a * X)], axis=-1)
+        return N, dN
+    if nn == 8:
+        a = np.array([-1, 1, 1, -1.0])
+        b = np.array([-1, -1, 1, 1.0])
+        X, E = xi[:, None], eta[:, None]
+        Nc = 0.25 * (1 + a * X) * (1 + b * E) * (a * X + b * E - 1)
+        dNc_x = 0.25 * a * (1 + b * E) * (2 * a * X + b * E)
+        dNc_e = 0.25 * b * (1 + a * X) * (a * X + 2 * b * E)
+        x, e = xi, eta
+        Nm = np.stack([0.5 * (1 - x * x) * (1 - e), 0.5 * (1 + x) * (1 - e * e),
+                       0.5 * (1 - x * x) * (1 + e), 0.5 * (1 - x) * (1 - e * e)], axis=1)
+        dNm_x = np.stack([-x * (1 - e), 0.5 * (1 - e * e), -x * (1 + e), -0.5 * (1 - e * e)], axis=1)
+        dNm_e = np.stack([-0.5 * (1 - x * x), -e * (1 + x), 0.5 * (1 - x * x), -e * (1 - x)], axis=1)
+        N = np.concatenate([Nc, Nm], axis=1)
+        dN = np.stack([np.concatenate([dNc_x, dNm_x], 1), np.concatenate([dNc_e, dNm_e], 1)], axis=-1)
+        return N, dN
+
+    def l(s):
+        return np.stack([0.5 * s * (s - 1), 1 - s * s, 0.5 * s * (s + 1)], 1), \
+            np.stack([s - 0.5, -2 * s, s + 0.5], 1)
+    lx, dlx = l(xi)
+    ly, dly = l(eta)
+    ij = [(0, 0), (2, 0), (2, 2), (0, 2), (1, 0), (2, 1), (1, 2), (0, 1), (1, 1)]
+    N = np.stack([lx[:, i] * ly[:, j] for i, j in ij], 1)
+    dN = np.stack([np.stack([dlx[:, i] * ly[:, j] for i, j in ij], 1),
+                   np.stack([lx[:, i] * dly[:, j] for i, j in ij], 1)], axis=-1)
+    return N, dN
+
+
+def _inverse_map(nn, X, P):
+    """Local coordinates of the points P (n, 2) in the elements of node coordinates X (n, nn, 2),
+    with the Jacobian determinant there: (N (n, nn), detJ (n), (xi, eta) (n, 2))."""
+    n = len(P)
+    if nn == 3:
+        x1, x2, x3 = X[:, 0], X[:, 1], X[:, 2]
+        J = np.stack([x2 - x1, x3 - x1], axis=-1)              # columns: d/dxi, d/deta
+        loc = _solve2(J, P - x1)
+        xi, eta = loc[:, 0], loc[:, 1]
+        N = np.stack([1 - xi - eta, xi, eta], 1)
+        return N, J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0], loc
+    loc = np.zeros((n, 2))
+    active = np.arange(n)
+    for _ in range(30):
+        N, dN = _shape_deriv(nn, loc[active, 0], loc[active, 1])
+        Xa = X[active]
+        x = np.einsum("pk,pkd->pd", N, Xa)
+        J = np.einsum("pkd,pka->pda", Xa, dN)                  # dx_d / dxi_a
+        step = _solve2(J, P[active] - x)
+        loc[active] += step
+        active = active[np.max(np.abs(step), axis=1) > 1e-12]
+        if not len(active):
+            break
+    N, dN = _shape_deriv(nn, loc[:, 0], loc[:, 1])
+    J = np.einsum("pkd,pka->pda", X, dN)
+    return N, J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0], loc
+
+
+def _solve2(J, r):
+    """Solutions of the 2 x 2 systems J s = r (n of them), by Cramer's rule."""
+    det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+    return np.stack([(J[:, 1, 1] * r[:, 0] - J[:, 0, 1] * r[:, 1]) / det,
+                     (J[:, 0, 0] * r[:, 1] - J[:, 1, 0] * r[:, 0]) / det], axis=1)
+
+
+def _gauss_weights(nn, loc, count):
+    """Weights of the Gauss points at the local coordinates loc, for elements of `count`
+    points: the tensor-product Gauss-Legendre rules (1, 4, 9, 16 points) and the triangle's
+    1- and 3-point rules; other counts share the reference area equally."""
+    if nn == 3:
+        return np.full(len(loc), 0.5 / count)
+    if count == 4:
+        return np.ones(len(loc))
+    if count == 9:
+        w = np.where(np.abs(loc) > 0.4, 5.0 / 9.0, 8.0 / 9.0)
+        return w[:, 0] * w[:, 1]
+    if count == 16:
+        w = np.where(np.abs(loc) > 0.6, 0.3478548451374538, 0.6521451548625461)
+        return w[:, 0] * w[:, 1]
+    return np.full(len(loc), 4.0 / count)
+
+
+def energy_density(s, E, nu):
+    """s : C^-1 s of stresses (n, 4) = xx, yy, xy, zz with the 3-D isotropic compliance (the zz
+    column is the program's: 0 in plane stress, nu (xx + yy) in plane strain, hoop in
+    axisymmetry, so that one formula serves every analysis type)."""
+    xx, yy, xy, zz = s[:, 0], s[:, 1], s[:, 2], s[:, 3]
+    return (xx * xx + yy * yy + zz * zz - 2 * nu * (xx * yy + yy * zz + zz * xx) + 2 * (1 + nu) * xy * xy) / E
+
+
+def _basis(d, deg):
+    """Complete polynomial basis of degree deg (0, 1, 2) at the scaled offsets d (n, 2)."""
+    x, y = d[:, 0], d[:, 1]
+    cols = [np.ones(len(d))]
+    if deg >= 1:
+        cols += [x, y]
+    if deg >= 2:
+        cols += [x * x, x * y, y * y]
+    return np.stack(cols, axis=1)
+
+
+def spr_stress(result, sg, order):
+    """Nodal stresses recovered by superconvergent patch recovery (Zienkiewicz & Zhu 1992): around
+    every corner node, a complete polynomial of the elements' order is fitted by least squares to
+    the Gauss-point stresses `sg` of the elements that share the node (degree 0 when the patch
+    has fewer points than terms) and evaluated at every node of those elements; each node gets the
+    mean of the fits of the patches it belongs to."""
+    m = result.mesh
+    xy = m.coordinates
+    conn, nnode = m.connectivity, m.element_nodes
+    ge = m.gauss_element - 1
+    gp = m.gauss_coordinates.reshape(-1, 2)
+    order_gp = np.argsort(ge, kind="stable")
+    start = np.searchsorted(ge[order_gp], np.arange(len(nnode) + 1))
+    ncorner = np.where(nnode == 3, 3, 4)
+    pairs = [(conn[e, k] - 1, e) for e in range(len(nnode)) for k in range(ncorner[e])]
+    pairs.sort()
+    acc = np.zeros((len(xy), sg.shape[1]))
+    cnt = np.zeros(len(xy))
+    i = 0
+    while i < len(pairs):
+        j = i
+        while j < len(pairs) and pairs[j][0] == pairs[i][0]:
+            j += 1
+        node = pairs[i][0]
+        els = [pairs[k][1] for k in range(i, j)]
+        i = j
+        idx = np.concatenate([order_gp[start[e]:start[e + 1]] for e in els])
+        nodes = np.unique(np.concatenate([conn[e, :nnode[e]] - 1 for e in els]))
+        scale = max(np.ptp(xy[nodes, 0]), np.ptp(xy[nodes, 1]), 1e-300)
+        deg = int(order)
+        while deg > 0 and len(idx) < [1, 3, 6][deg]:
+            deg -= 1
+        P = _basis((gp[idx] - xy[node]) / scale, deg)
+        coef = np.linalg.lstsq(P, sg[idx], rcond=None)[0]
+        acc[nodes] += _basis((xy[nodes] - xy[node]) / scale, deg) @ coef
+        cnt[nodes] += 1
+    used = cnt > 0
+    acc[used] /= cnt[used, None]
+    return acc
+
+
+def zz_indicator(result, materials, step=None):
+    """(eta_e (nelem), the global relative estimate) of a step (default the last) from the
+    difference of the recovered and the Gauss-point stresses: module docstring."""
+    m = result.mesh
+    step = step or result.last
+    sg = step.field("stress_gauss")
+    sn = spr_stress(result, sg, 2 if np.max(result.mesh.element_nodes) >= 8 else 1)
+    ge = m.gauss_element - 1
+    gp = m.gauss_coordinates.reshape(-1, 2)
+    conn = m.connectivity
+    nnode = m.element_nodes
+    xy = m.coordinates
+    axi = int(result.attrs.get("ntype", 1)) == 3
+    nelem = len(nnode)
+    count = np.bincount(ge, minlength=nelem)
+    err = np.zeros(nelem)
+    ref = np.zeros(nelem)
+    Emat = np.array([materials[int(k)][0] for k in m.material])
+    numat = np.array([materials[int(k)][1] for k in m.material])
+    tmat = np.array([materials[int(k)][2] for k in m.material])
+    for nn in np.unique(nnode):
+        sel = np.where(nnode[ge] == nn)[0]
+        e = ge[sel]
+        c = conn[e, :nn] - 1
+        N, detJ, loc = _inverse_map(int(nn), xy[c], gp[sel])
+        w = np.zeros(len(sel))
+        for cnt in np.unique(count[e]):
+            k = count[e] == cnt
+            w[k] = _gauss_weights(int(nn), loc[k], int(cnt))
+        dv = w * np.abs(detJ) * (2 * np.pi * gp[sel, 0] if axi else tmat[e])
+        star = np.einsum("pk,pkc->pc", N, sn[c])
+        h = sg[sel]
+        err += np.bincount(e, dv * energy_density(star - h, Emat[e], numat[e]), minlength=nelem)
+        ref += np.bincount(e, dv * energy_density(h, Emat[e], numat[e]), minlength=nelem)
+    total = ref.sum() + err.sum()
+    if total <= 0.0:
+        return np.zeros(nelem), 0.0
+    eta = np.sqrt(np.maximum(err, 0.0) / total)
+    return eta, float(np.sqrt(np.sum(eta ** 2)))
+
+
+def indicator(result, materials, step=None):
+    """(eta_e, estimate, source) of a step (default the last): the program's indicator when
+    the result file has it (source "program"), else zz_indicator (source "stress recovery")."""
+    step = step or result.last
+    try:
+        eta = np.asarray(step.field(PROGRAM_INDICATOR), dtype=float)
+    except KeyError:
+        eta = None
+    if eta is not None and eta.shape == (len(result.mesh.element_nodes),):
+        est = step.attrs.get(PROGRAM_ESTIMATE)
+        est = float(np.atleast_1d(est)[0]) if est is not None else float(np.sqrt(np.sum(eta ** 2)))
+        return eta, est, "program"
+    eta, est = zz_indicator(result, materials, step)
+    return eta, est, "stress recovery"
+
+
+# ------------------------------------------------------------------------------ key outputs
+SCHEMES = {"RETURN": "NEWTON", "EXPLICIT": "INCREMENTAL"}   # the result file's names -> the deck's
+OUTPUTS = [("peak_pressure", "peak pressure"), ("width", "contact width"), ("approach", "approach"),
+           ("von_mises", "largest von Mises stress"), ("slip_share", "slip zone (share of the closed area)")]
+
+
+def von_mises(s):
+    xx, yy, xy, zz = s[:, 0], s[:, 1], s[:, 2], s[:, 3]
+    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2) + 3 * xy * xy)
+
+
+def key_outputs(result):
+    """The outputs Richardson extrapolation is applied to, at the last kept increment, and the
+    increment-size figures of the scheme: {"peak_pressure", "width", "approach", "von_mises",
+    "slip_share" (NaN without contact), "law_drift" (largest over the kept increments),
+    "residual", "scheme"}."""
+    out = {k: float("nan") for k, _ in OUTPUTS}
+    out["von_mises"] = float(np.max(von_mises(result.last.field("stress_gauss"))))
+    drift = result.history("law_drift")
+    out["law_drift"] = float(np.nanmax(drift)) if np.any(np.isfinite(drift)) else float("nan")
+    res = result.history("residual")
+    out["residual"] = float(np.nanmax(res)) if np.any(np.isfinite(res)) else float("nan")
+    out["scheme"] = ""
+    if result.contact is not None:
+        from .history import History
+        h = History(result)
+        f = h.figures(len(h.steps) - 1)
+        for k in ("peak_pressure", "width", "approach", "slip_share"):
+            out[k] = f[k]
+        out["scheme"] = SCHEMES.get(str(result.contact.attrs.get("update", "")).upper(),
+                                str(result.contact.attrs.get("update", "")))
+    return out
+
+
+# -------------------------------------------------------------------------------- Richardson
+def richardson(f1, f2, f3, r=2.0, fs=1.25):
+    """Richardson extrapolation (Richardson 1911) of a value on three meshes of sizes h, h/r,
+    h/r^2 (f1 coarsest) and Roache's grid convergence index (Roache 1998, Fs = 1.25 for three
+    meshes): {"order", "extrapolated", "error" (|f_ext - f3|, the estimated error of the finest),
+    "gci" (relative), "note"}.  A sequence that is not monotone, or whose observed order is not
+    positive, is "not in the asymptotic range": no order or extrapolation then, and the error is
+    given as Roache's two-mesh GCI with Fs = 3 on the formal order's place taken by 1,
+    3 |f3 - f2| / (r - 1)."""
+    out = {"order": float("nan"), "extrapolated": float("nan"), "error": float("nan"),
+           "gci": float("nan"), "note": ""}
+    vals = [f1, f2, f3]
+    if any(v is None or not math.isfinite(v) for v in vals):
+        out["note"] = "not available"
+        return out
+    d1, d2 = f1 - f2, f2 - f3
+    scale = max(abs(f1), abs(f2), abs(f3), 1e-300)
+    if abs(d2) <= 1e-12 * scale and abs(d1) <= 1e-12 * scale:
+        out.update(order=float("nan"), extrapolated=f3, error=0.0, gci=0.0, note="unchanged by refinement")
+        return out
+    if d1 * d2 <= 0.0 or abs(d2) >= abs(d1):
+        out["error"] = 3.0 * abs(d2) / (r - 1.0)
+        out["gci"] = out["error"] / abs(f3) if f3 != 0 else float("nan")
+        out["note"] = "not in the asymptotic range (%s)" % ("oscillating" if d1 * d2 <= 0.0 else "not converging")
+        return out
+    p = math.log(d1 / d2) / math.log(r)
+    ext = f3 + (f3 - f2) / (r ** p - 1.0)
+    out.update(order=p, extrapolated=ext, error=abs(ext - f3),
+               gci=fs * abs((f3 - f2) / f3) / (r ** p - 1.0) if f3 != 0 else float("nan"))
+    return out
+
+
+# -------------------------------------------------------------------------------- running
+def run_cpu(cmd, log, cwd=None):
+    """Run cmd, its output into `log`; (exit code, wall s, user + system CPU s of the child)."""
+    with open(log, "w") as f:
+        t0 = time.perf_counter()
+        p = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd)
+        _, status, ru = os.wait4(p.pid, 0)
+    return os.waitstatus_to_exitcode(status), time.perf_counter() - t0, ru.ru_utime + ru.ru_stime
+
+
+def solve(exe, deck, h5, lis):
+    """kontakt2d on one deck; (result, CPU s).  AdaptError when no complete result came out."""
+    rc, wall, cpu = run_cpu([exe, deck, "-o", h5, "-l", lis, "-q"], os.path.splitext(h5)[0] + ".log")
+    if rc not in (0, 4) or not os.path.isfile(h5):
+        with open(os.path.splitext(h5)[0] + ".log") as f:
+            tail = f.read().strip().splitlines()[-3:]
+        raise AdaptError("kontakt2d %s ended with exit code %d: %s" % (deck, rc, " / ".join(tail)))
+    return Result(h5), cpu, rc
+
+
+def _row(label, result, eta_est, source, cpu_solve, cpu_mesh, rc):
+    ko = key_outputs(result)
+    row = {"step": label, "elements": len(result.mesh.element_nodes),
+           "dofs": 2 * len(result.mesh.coordinates), "estimated_error": eta_est, "source": source,
+           "cpu_solve": cpu_solve, "cpu_mesh": cpu_mesh, "exit": rc}
+    row.update(ko)
+    return row
+
+
+# ---------------------------------------------------------------------- gmsh: the size field
+def element_sizes(result):
+    """(h_e, polynomial order p_e) of every element: h from the corners' area (a quadrilateral
+    sqrt(A), a triangle the edge of the equilateral triangle of its area)."""
+    m = result.mesh
+    nn = m.element_nodes
+    nc = np.where(nn == 3, 3, 4)
+    xy = m.coordinates
+    area = np.zeros(len(nn))
+    for k in range(4):
+        a = m.connectivity[:, k] - 1
+        b = np.where(k + 1 < nc, m.connectivity[:, (k + 1) % 4], m.connectivity[:, 0]) - 1
+        valid = k < nc
+        area += np.where(valid, xy[a, 0] * xy[b, 1] - xy[b, 0] * xy[a, 1], 0.0)
+    area = 0.5 * np.abs(area)
+    h = np.where(nn == 3, np.sqrt(4.0 * area / math.sqrt(3.0)), np.sqrt(area))
+    p = np.where(nn >= 8, 2, 1)
+    return h, p
+
+
+def new_sizes(eta, h, p, target, max_elements=None, shrink=(0.2, 2.0), safety=0.8):
+    """The element sizes of the next mesh: equidistribution of the error over the new elements.
+
+    With eta_e^2 ~ h^(2p+2) in an element's area (eta_e^2 = c h^2p times its area h^2), a size
+    s_e h_e there gives (1/s_e^2) elements of error^2 eta_e^2 s_e^(2p+2) each; the fewest
+    elements with sum eta_e^2 s_e^2p = (safety target)^2 have every new element's error equal:
+    s_e = (lam / eta_e^2)^(1/(2p+2)), lam^(p/(p+1)) = (safety target)^2 / sum eta_e^(2/(p+1)).
+    s is kept within `shrink` per step; with max_elements the sizes grow together until the
+    predicted count sum 1/s_e^2 fits.  Returns (new h_e, predicted element count)."""
+    pe = float(np.max(p))          # one order for the mesh (gmsh meshes with one order)
+    t2 = (safety * target) ** 2
+    eta = np.maximum(eta, 1e-300)
+    lam = (t2 / np.sum(eta ** (2.0 / (pe + 1.0)))) ** ((pe + 1.0) / pe)
+    s = (lam / eta ** 2) ** (1.0 / (2.0 * pe + 2.0))
+    s = np.clip(s, shrink[0], shrink[1])
+    n_new = float(np.sum(1.0 / s ** 2))
+    if max_elements and n_new > max_elements:
+        s *= math.sqrt(n_new / max_elements)
+        n_new = float(np.sum(1.0 / s ** 2))
+    return s * h, n_new
+
+
+def traction_sizes(result, target):
+    """The element sizes the contact tractions ask for: along each interface, in the order of the
+    pairs' positions, the pressure's second difference p'' at a pair between two others (one of
+    the three closed) bounds the error of its interpolation over an edge of length h by
+    h^2 |p''| / 8; keeping it below target times the interface's peak pressure asks for
+    h <= sqrt(8 target p_max / |p''|) at the pair's nodes (node a, and node b or the nodes of
+    surface B under it).  Returns {node index (0-based): size}, empty without contact."""
+    c = result.contact
+    if c is None:
+        return {}
+    last = result.last
+    p = last.contact("pressure")
+    closed = last.contact("normal_state") > 0
+    pos = c.position
+    want = {}
+    for itf in np.unique(c.interface):
+        k = np.where(c.interface == itf)[0]
+        axis = 0 if np.ptp(pos[k, 0]) >= np.ptp(pos[k, 1]) else 1
+        k = k[np.argsort(pos[k, axis])]
+        pk = p[k]
+        pmax = float(np.max(np.where(closed[k], pk, 0.0))) if np.any(closed[k]) else 0.0
+        if pmax <= 0.0 or len(k) < 3:
+            continue
+        s = pos[k, axis]
+        for j in range(1, len(k) - 1):
+            if not closed[k[j - 1:j + 2]].any():
+                continue
+            h1, h2 = s[j] - s[j - 1], s[j + 1] - s[j]
+            if h1 <= 0.0 or h2 <= 0.0:
+                continue
+            d2 = 2.0 * (h1 * pk[j + 1] - (h1 + h2) * pk[j] + h2 * pk[j - 1]) / (h1 * h2 * (h1 + h2))
+            if d2 == 0.0:
+                continue
+            hreq = math.sqrt(8.0 * target * pmax / abs(d2))
+            nodes = [int(c.node_a[k[j]]) - 1]
+            if "master_nodes" in c:
+                nodes += [int(v) - 1 for v, w in zip(c.master_nodes[k[j]], c.master_weights[k[j]]) if v > 0 and w > 0]
+            else:
+                nodes.append(int(c.node_b[k[j]]) - 1)
+            for n in nodes:
+                want[n] = min(want.get(n, np.inf), hreq)
+    return want
+
+
+def limit_by_tractions(result, hnew, h, target, shrink=0.2):
+    """hnew with the sizes of the elements at the contact pairs limited by traction_sizes (never
+    below shrink times their present size); returns (sizes, number of elements limited)."""
+    want = traction_sizes(result, target)
+    if not want:
+        return hnew, 0
+    out = hnew.copy()
+    limited = 0
+    m = result.mesh
+    for e in range(len(out)):
+        nodes = m.connectivity[e, :m.element_nodes[e]] - 1
+        w = min((want[n] for n in nodes if n in want), default=np.inf)
+        if w < out[e]:
+            out[e] = max(w, shrink * h[e])
+            limited += 1
+    return out, limited
+
+
+def msh_nodes(path):
+    """The node count of a gmsh .msh file (format 4.1 or 2.2, ASCII) from its $Nodes header."""
+    with open(path) as f:
+        for line in f:
+            if line.strip() == "$Nodes":
+                head = f.readline().split()
+                return int(head[1]) if len(head) >= 4 else int(head[0])
+    raise AdaptError("%s: no $Nodes section" % path)
+
+
+def write_size_view(path, result, hnew):
+    """A gmsh post-processing view (.pos) of the sizes at the corners of the current mesh: the
+    smallest of the sizes wanted by the elements around each node."""
+    m = result.mesh
+    xy = m.coordinates
+    nn = m.element_nodes
+    nodal = np.full(len(xy), np.inf)
+    for k in range(4):
+        valid = (nn != 3) | (k < 3)
+        np.minimum.at(nodal, m.connectivity[valid, k] - 1, hnew[valid])
+    with open(path, "w") as f:
+        f.write('View "size" {\n')
+        for e in range(len(nn)):
+            nc = 3 if nn[e] == 3 else 4
+            c = m.connectivity[e, :nc] - 1
+            f.write("S%s(%s){%s};\n" % ("T" if nc == 3 else "Q",
+                                        ",".join("%.10g,%.10g,0" % (xy[i, 0], xy[i, 1]) for i in c),
+                                        ",".join("%.6g" % nodal[i] for i in c)))
+        f.write("};\n")
+
+
+def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh"):
+    """Mesh `geo` into `msh` (format 4.1) with the sizes of the view `pos` as the only size
+    field, or with the .geo's own sizes times `factor`; returns the CPU seconds of gmsh."""
+    if shutil.which(gmsh) is None:
+        raise AdaptError("gmsh is needed to remesh %s (Debian package gmsh)" % geo)
+    wrapper = os.path.splitext(msh)[0] + "_mesh.geo"
+    lines = ['Include "%s";' % os.path.abspath(geo)]
+    if factor is not None:
+        lines.append("Mesh.MeshSizeFactor = %.10g;" % factor)
+    if pos is not None:
+        lines += ["Mesh.MeshSizeFromPoints = 0;", "Mesh.MeshSizeFromCurvature = 0;",
+                  "Mesh.MeshSizeExtendFromBoundary = 0;", 'Merge "%s";' % os.path.abspath(pos),
+                  "Field[99001] = PostView;", "Field[99001].ViewIndex = PostProcessing.NbViews - 1;",
+                  "Background Field = 99001;"]
+    with open(wrapper, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    rc, wall, cpu = run_cpu([gmsh, "-2", "-format", "msh41", wrapper, "-o", msh], log)
+    if rc != 0 or not os.path.isfile(msh):
+        raise AdaptError("gmsh failed on %s (exit code %d; its output: %s)" % (wrapper, rc, log))
+    return cpu
+
+
+# ------------------------------------------------------------------------------- the drivers
+def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8, log=print):
+    """Remesh the .geo of a MESH deck until the estimated error is below `target` or the next
+    mesh would exceed `max_dofs`: adaptively from the indicators (a size field), or with
+    uniform=True by halving the .geo's sizes at each step.  Returns the rows of the table."""
+    kind, msh, geo = deck_kind(deck)
+    if kind != "mesh" or geo is None:
+        raise AdaptError("%s: a MESH deck with the .geo of its mesh beside it is needed for remeshing" % deck)
+    mats = deck_materials(deck)
+    name = os.path.splitext(os.path.basename(deck))[0]
+    tag = "uniform" if uniform else "adaptive"
+    wdir = os.path.join(out, "steps_" + tag)
+    os.makedirs(wdir, exist_ok=True)
+    with open(deck) as f:
+        text = f.read()
+    rows, pos = [], None
+    for k in range(max_steps):
+        base = os.path.join(wdir, "%s_%02d" % (name, k))
+        cpu_mesh = gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos,
+                             factor=0.5 ** k if uniform else None)
+        # the predicted size of a mesh is approximate: one that came out beyond the budget is
+        # made again with all sizes grown by the excess (at most four times)
+        for _ in range(4):
+            dofs = 2 * msh_nodes(base + ".msh")
+            if pos is None or not max_dofs or dofs <= max_dofs:
+                break
+            hnew *= 1.05 * math.sqrt(dofs / max_dofs)
+            write_size_view(pos, r, hnew)
+            cpu_mesh += gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos)
+        if max_dofs and 2 * msh_nodes(base + ".msh") > max_dofs:
+            rows[-1]["stop"] = "budget"
+            break
+        with open(base + ".dat", "w") as f:
+            f.write(with_mesh_file(text, os.path.basename(base + ".msh")))
+        t0 = time.process_time()
+        r, cpu, rc = solve(exe, base + ".dat", base + ".h5", base + ".lis")
+        eta, est, source = indicator(r, mats)
+        row = _row(k, r, est, source, cpu, cpu_mesh + time.process_time() - t0, rc)
+        row["method"] = tag
+        row["h5"] = base + ".h5"
+        rows.append(row)
+        log("  %s step %d: %d DOFs, estimated error %.4g (%s), CPU %.2f s" % (tag, k, row["dofs"], est, source, cpu))
+        if est <= target:
+            break
+        if uniform:
+            if 4 * row["dofs"] > max_dofs:
+                row["stop"] = "budget"
+                break
+            continue
+        h, p = element_sizes(r)
+        max_el = max_dofs / row["dofs"] * len(h) if max_dofs else None
+        if max_el and len(h) >= 0.8 * max_el:
+            row["stop"] = "budget"          # this mesh already has the DOFs allowed
+            break
+        t0 = time.process_time()
+        hnew, n_new = new_sizes(eta, h, p, target, max_el)
+        hnew, row["traction_limited"] = limit_by_tractions(r, hnew, h, target)
+        pos = base + "_size.pos"
+        write_size_view(pos, r, hnew)
+        row["cpu_mesh"] += time.process_time() - t0
+    return rows
+
+
+def refine_card_deck(deck, target, max_dofs, out, exe, min_levels=3, max_levels=6, log=print):
+    """Split every element of a card deck into four, level after level, until the estimated
+    error is below `target` (after at least `min_levels` meshes, for Richardson) or the next
+    level would exceed `max_dofs`.  Returns the rows of the table."""
+    from .refine import RefineError, read_card_deck, refine_deck
+    try:
+        read_card_deck(deck)        # what the splitting cannot take is refused before any run
+    except RefineError as e:
+        raise AdaptError(str(e))
+    mats = deck_materials(deck)
+    name = os.path.splitext(os.path.basename(deck))[0]
+    wdir = os.path.join(out, "steps_uniform")
+    os.makedirs(wdir, exist_ok=True)
+    rows = []
+    src = deck
+    for k in range(max_levels):
+        base = os.path.join(wdir, "%s_%02d" % (name, k))
+        t0 = time.process_time()
+        if k == 0:
+            shutil.copyfile(deck, base + ".dat")
+        else:
+            try:
+                text = refine_deck(read_card_deck(src), "level %d of the uniform refinement of %s by tools/adapt.py: "
+                                   "every element of level %d split into 4" % (k, os.path.basename(deck), k - 1))
+            except RefineError as e:
+                raise AdaptError(str(e))
+            with open(base + ".dat", "w") as f:
+                f.write(text)
+        src = base + ".dat"
+        t_refine = time.process_time() - t0
+        r, cpu, rc = solve(exe, src, base + ".h5", base + ".lis")
+        t0 = time.process_time()
+        eta, est, source = indicator(r, mats)
+        row = _row(k, r, est, source, cpu, t_refine + time.process_time() - t0, rc)
+        row["method"] = "uniform"
+        row["h5"] = base + ".h5"
+        rows.append(row)
+        log("  level %d: %d DOFs, estimated error %.4g (%s), CPU %.2f s" % (k, row["dofs"], est, source, cpu))
+        if k + 1 >= min_levels and est <= target:
+            break
+        if 4 * row["dofs"] > max_dofs:
+            row["stop"] = "budget"
+            break
+    return rows
+
+
+def richardson_table(rows):
+    """Richardson on the last three rows (meshes h, h/2, h/4): {output: richardson(...)}."""
+    if len(rows) < 3:
+        return {}
+    a, b, c = rows[-3:]
+    return {k: richardson(a[k], b[k], c[k]) for k, _ in OUTPUTS}
+
+
+# ------------------------------------------------------------------------------- the report
+COLUMNS = ["method", "step", "elements", "dofs", "estimated_error", "source", "cpu_solve", "cpu_mesh",
+           "cpu_cumulative", "peak_pressure", "width", "approach", "von_mises", "slip_share", "scheme",
+           "law_drift", "residual", "traction_limited", "exit"]
+
+
+def cumulate(rows):
+    """cpu_cumulative: the CPU seconds of every step of the same method up to this one (the
+    cost of reaching this mesh: meshing, solving, estimating)."""
+    total = {}
+    for r in rows:
+        total[r["method"]] = total.get(r["method"], 0.0) + r["cpu_solve"] + r["cpu_mesh"]
+        r["cpu_cumulative"] = total[r["method"]]
+    return rows
+
+
+def write_tables(rows, rich, out, name, deck, target, max_dofs):
+    """<name>_adapt.csv and <name>_adapt.md in `out`; returns the Markdown path."""
+    from .tables import markdown_table, write_dict_csv
+    csv_path = os.path.join(out, name + "_adapt.csv")
+    write_dict_csv(csv_path, COLUMNS, rows)
+    final = [r for r in rows if r["method"] == rows[0]["method"]][-1]
+    reached = final["estimated_error"] <= target
+    md = ["# Refinement of %s to an estimated error of %g" % (os.path.basename(deck), target), "",
+          "Deck `%s`; budget %d DOFs; the estimate is the relative energy-norm error of the last increment "
+          "(source: %s; docs/adaptivity.md)." % (os.path.basename(deck), max_dofs, final["source"]), "",
+          ("**Reached**: %.4g <= %g with %d DOFs (%s, step %s)." if reached else
+           "**Not reached**: %.4g > %g with %d DOFs (%s, step %s): the budget or the step limit ended it.")
+          % (final["estimated_error"], target, final["dofs"], final["method"], final["step"]), ""]
+    head = ["method", "step", "elements", "DOFs", "est. error", "CPU solve [s]", "CPU mesh+estimate [s]",
+            "CPU cumulative [s]", "peak pressure", "width", "approach", "max von Mises", "slip share",
+            "law drift"]
+    fmt = {"est. error": "%.4g", "CPU solve [s]": "%.2f", "CPU mesh+estimate [s]": "%.2f",
+           "CPU cumulative [s]": "%.2f", "peak pressure": "%.5g", "width": "%.5g", "approach": "%.5g",
+           "max von Mises": "%.5g", "slip share": "%.3f", "law drift": "%.3g"}
+    body = [[r["method"], str(r["step"]), str(r["elements"]), str(r["dofs"]), r["estimated_error"], r["cpu_solve"],
+             r["cpu_mesh"], r["cpu_cumulative"], r["peak_pressure"], r["width"], r["approach"], r["von_mises"],
+             r["slip_share"], r["law_drift"]] for r in rows]
+    md.append(markdown_table("Convergence", head, body, fmt))
+    if rich:
+        rb = []
+        for k, label in OUTPUTS:
+            v = rich[k]
+            rb.append([label, final[k], v["order"], v["extrapolated"], v["error"], v["gci"], v["note"]])
+        md.append(markdown_table("Richardson extrapolation of the last three meshes (h, h/2, h/4)",
+                                 ["output", "finest", "observed order p", "extrapolated", "error of the finest",
+                                  "GCI", "note"], rb, {"finest": "%.6g", "observed order p": "%.2f",
+                                                       "extrapolated": "%.6g", "error of the finest": "%.3g",
+                                                       "GCI": "%.3g"}))
+        md.append("p = log2((f1 - f2)/(f2 - f3)), f_ext = f3 + (f3 - f2)/(2^p - 1) (Richardson 1911); GCI = "
+                  "1.25 |f3 - f2| / |f3| / (2^p - 1), the grid convergence index (Roache 1998, relative); "
+                  "a sequence that oscillates or does not converge is not in the asymptotic range, and its error "
+                  "is Roache's safety-factor estimate 3 |f3 - f2| (its GCI that relative to |f3|).\n")
+    scheme = final.get("scheme") or ""
+    if scheme:
+        md += ["### Increment size", "",
+               "Scheme %s; the largest law drift over the increments of the final mesh is %.3g (the normal spring "
+               "forces' distance from the interface law, relative to the largest force)."
+               % (scheme, final["law_drift"]),
+               ("The explicit (INCREMENTAL) scheme drifts off the law by about 1/N for N loading increments: "
+                "this drift is its increment-size error, and more increments reduce it."
+                if scheme.upper() in ("EXPLICIT", "INCREMENTAL") else
+                "NEWTON and MODIFIED return the forces to the laws at every increment end, so the drift is "
+                "round-off: the increment size does not enter the end states' law error (a path-dependent "
+                "friction history between the ends is not estimated here)."), ""]
+    path = os.path.join(out, name + "_adapt.md")
+    with open(path, "w") as f:
+        f.write("\n".join(md) + "\n")
+    return path
+
+
+def plot_convergence(rows, png, target=None):
+    """Estimated error against DOFs and against cumulative CPU seconds, one line per method."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    for method in sorted({r["method"] for r in rows}):
+        rs = [r for r in rows if r["method"] == method]
+        e = [r["estimated_error"] for r in rs]
+        ax[0].loglog([r["dofs"] for r in rs], e, "o-", label=method)
+        ax[1].loglog([max(r["cpu_cumulative"], 1e-3) for r in rs], e, "o-", label=method)
+    for a, xl in zip(ax, ["DOFs", "CPU seconds (cumulative: meshing, solving, estimating)"]):
+        if target:
+            a.axhline(target, color="k", lw=0.8, ls="--", label="target")
+        a.set_xlabel(xl)
+        a.set_ylabel("estimated relative error (energy norm)")
+        a.grid(True, which="both", alpha=0.3)
+        a.legend()
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    return png
+
+
+def publish(h5, out, name):
+    """The final result as tools/run.sh leaves it: out/<name>.h5 with its .xdmf (naming the
+    copied file) and .lis; returns the path of the .h5."""
+    src = os.path.splitext(h5)[0]
+    dst = os.path.join(out, name)
+    shutil.copyfile(h5, dst + ".h5")
+    if os.path.isfile(src + ".lis"):
+        shutil.copyfile(src + ".lis", dst + ".lis")
+    if os.path.isfile(src + ".xdmf"):
+        with open(src + ".xdmf") as f:
+            text = f.read()
+        with open(dst + ".xdmf", "w") as f:
+            f.write(text.replace(os.path.basename(h5), name + ".h5"))
+    return dst + ".h5"
