@@ -108,6 +108,10 @@ module contact_algorithm
       real(dp) :: mu = 0.0_dp
       integer :: nswitch = 0              !! mode changes in the increment so far (see MAX_SWITCH)
       real(dp) :: sdir = 0.0_dp           !! ideal law: direction (+-1) of the current slip
+      logical :: released = .false.       !! ideal law: kept closed in tension until the multipliers
+                                          !! settled, then let open (no tension band any more)
+      logical :: hold = .false.           !! ideal law: the multipliers were just updated; the
+                                          !! next evaluation keeps the modes (see augment_multipliers)
    end type pair_mode_t
 
    type :: contact_state_t
@@ -127,6 +131,7 @@ module contact_algorithm
       real(dp) :: tol_pen = 0.0_dp                !! accepted penetration and stick slip [length]
       real(dp) :: violation = 0.0_dp              !! largest penetration / stick slip at the last check
       integer :: augmentations = 0                !! multiplier updates in the current increment
+      real(dp) :: fref = 0.0_dp                   !! largest normal force of an ideal pair committed so far
    end type contact_state_t
 
 contains
@@ -778,6 +783,14 @@ contains
       end select
    end subroutine tangential_explicit
 
+   !> Round-off of the normal forces of ideal pair j: 1e-10 of the largest
+   !! normal force of the run so far or of its multiplier.
+   pure real(dp) function round_off_force(st, j) result(f)
+      type(contact_state_t), intent(in) :: st
+      integer, intent(in) :: j
+      f = 1.0e-10_dp*max(st%fref, abs(st%lam_n(j)))
+   end function round_off_force
+
    !> Forces and modes of an ideal pair for its current multipliers:
    !! F_n = max(0, lam_n + eps_n u_n), F_T = proj(lam_T + eps_T du_T) onto
    !! [-g, g] with the slip bound g = mu lam_n of the same multipliers: within
@@ -789,12 +802,31 @@ contains
       type(contact_state_t), intent(inout) :: st
       integer, intent(in) :: jp
       logical, intent(inout) :: chg
-      real(dp) :: trial_n, trial_t, lim
+      real(dp) :: trial_n, trial_t, lim, band
       integer :: ts
       logical :: now_closed
       associate (s => st%s(jp), md => st%md(jp), ifc => cdef%ifaces(cdef%pairs(jp)%iface))
          trial_n = st%lam_n(jp) + st%eps_n(jp)*(s%un + st%dun(jp))
-         now_closed = trial_n > 0.0_dp
+         ! an open pair closes when its trial force is a compression; a closed one
+         ! opens when its trial force is a tension beyond the band: half its
+         ! multiplier or its force at the start of the increment (and at least the
+         ! round-off of the run's forces).  Within the band it carries the tension
+         ! until the multipliers settle: a body held by contact alone that is
+         ! unloaded to zero has every pair closed at zero force, its first
+         ! penalty forces are of mixed sign (they sum to the zero load), and
+         ! opening each pair in tension would leave a search over the pairs
+         ! for the one the body rests on, or none (a singular system).  Released
+         ! pairs (augment_multipliers: a tension that the multipliers do not drive
+         ! to zero) keep the round-off band only.
+         band = round_off_force(st, jp)
+         if (.not. md%released) band = max(band, 0.5_dp*max(abs(st%lam_n(jp)), s%fn))
+         if (md%hold) then
+            now_closed = md%closed
+         else if (md%closed) then
+            now_closed = trial_n > -band
+         else
+            now_closed = trial_n > 0.0_dp
+         end if
          if (now_closed .neqv. md%closed) then
             md%closed = now_closed
             md%newly_closed = now_closed .and. .not. s%closed
@@ -802,17 +834,27 @@ contains
             chg = .true.
             md%nswitch = md%nswitch + 1
          end if
-         st%fn(jp) = max(trial_n, 0.0_dp)
+         st%fn(jp) = merge(trial_n, 0.0_dp, md%closed)
          st%ft(jp) = 0.0_dp
          if (md%closed .and. ifc%friction /= FRICTION_NONE) then
-            lim = md%mu*max(st%lam_n(jp), 0.0_dp)
+            ! Coulomb's bound of the current normal force (not Tresca's of the
+            ! multiplier): a slipping pair carries mu F_n at every solution, so
+            ! the multiplier iteration need not bring mu lam_n to mu F_n (a slow,
+            ! linear iteration through the sticking pairs' soft tangential
+            ! penalty: 86-123 solutions per increment on a frictional ring).
+            ! The matrix keeps K_T = 0 (symmetric): the coupling mu dF_n is
+            ! corrected by the out-of-balance force of the next solutions.
+            lim = md%mu*max(st%fn(jp), 0.0_dp)
             trial_t = st%lam_t(jp) + st%eps_t(jp)*st%dut(jp)
             ! the cone is widened by the round-off allowance of the Coulomb check
             ! (1e-10 F_n): with lam_n = 0 (the first iterate of a pair closed
             ! without force) the bound is zero, and an exact test would decide
             ! stick or slip, and so the number of repeats, by the sign of the
             ! round-off in du_T of a pair that does not move tangentially
-            if (abs(trial_t) <= lim + 1.0e-10_dp*st%fn(jp) .or. &
+            if (md%hold .and. md%tstate == TS_SLIP) then
+               ts = TS_SLIP
+               st%ft(jp) = md%sdir*lim
+            else if (md%hold .or. abs(trial_t) <= lim + 1.0e-10_dp*max(st%fn(jp), 0.0_dp) .or. &
                 (md%tstate == TS_SLIP .and. trial_t*md%sdir < 0.0_dp)) then
                ! stick; also a slipping pair whose trial force has turned
                ! against its slip: it sticks first and its stick stiffness
@@ -834,6 +876,7 @@ contains
          end if
          md%kn = merge(st%eps_n(jp), 0.0_dp, md%closed)
          md%kte = st%eps_t(jp)
+         md%hold = .false.
          call set_kt(ifc, md)
       end associate
    end subroutine evaluate_ideal
@@ -851,31 +894,51 @@ contains
       type(contact_state_t), intent(inout) :: st
       logical, intent(out) :: done
       integer :: j
-      real(dp) :: viol, fmax, coulomb
+      real(dp) :: viol, fmax, coulomb, tension, fabs, lamabs, fround
       viol = 0.0_dp
       coulomb = 0.0_dp
       fmax = 0.0_dp
+      tension = 0.0_dp
+      fabs = 0.0_dp
+      lamabs = 0.0_dp
       do j = 1, size(st%s)
          if (is_ideal(cdef, j)) fmax = max(fmax, st%fn(j))
       end do
+      fround = 1.0e-10_dp*max(fmax, st%fref)
       do j = 1, size(st%s)
          if (.not. is_ideal(cdef, j)) cycle
          associate (s => st%s(j), md => st%md(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             if (.not. md%closed) cycle
             viol = max(viol, abs(s%un + st%dun(j)))
+            tension = max(tension, -st%fn(j))
+            fabs = max(fabs, abs(st%fn(j)))
+            lamabs = max(lamabs, abs(st%lam_n(j)))
             if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_STICK) viol = max(viol, abs(st%dut(j)))
             if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_SLIP) &
                coulomb = max(coulomb, abs(abs(st%ft(j)) - md%mu*st%fn(j)))
          end associate
       end do
       st%violation = viol
-      done = viol <= st%tol_pen .and. coulomb <= 1.0e-10_dp*fmax
+      done = viol <= st%tol_pen .and. coulomb <= fround .and. tension <= fround
       if (done) return
+      if (viol <= st%tol_pen .and. tension > fround .and. fabs > 0.5_dp*lamabs) then
+         ! closed pairs in tension whose forces the multipliers do not drive to
+         ! zero (the forces do not collapse as those of a body at rest under a
+         ! zero load do): they open (their band is the round-off from now on)
+         do j = 1, size(st%s)
+            if (is_ideal(cdef, j) .and. st%md(j)%closed .and. st%fn(j) < -fround) st%md(j)%released = .true.
+         end do
+      end if
       st%augmentations = st%augmentations + 1
       do j = 1, size(st%s)
          if (.not. is_ideal(cdef, j)) cycle
          st%lam_n(j) = st%fn(j)
          st%lam_t(j) = st%ft(j)
+         ! the forces of the new multipliers at the current displacements are not
+         ! a test of the modes: a pair's trial force jumps by lam_new - lam_old
+         ! until the next solution moves the bodies by the multipliers' change
+         ! (e.g. by the whole force lam_old of a pair that is unloaded to zero)
+         st%md(j)%hold = .true.
       end do
    end subroutine augment_multipliers
 
@@ -906,7 +969,9 @@ contains
                ! no elastic layer: all tangential motion of a slipping pair is
                ! irreversible; a sticking one moved by at most tol_pen
                s%closed = md%closed
-               s%fn = merge(st%fn(j), 0.0_dp, md%closed)
+               ! (a tension left is within the round-off of the run's forces)
+               s%fn = merge(max(st%fn(j), 0.0_dp), 0.0_dp, md%closed)
+               st%fref = max(st%fref, s%fn)
                s%ft = merge(st%ft(j), 0.0_dp, md%closed)
                s%tstate = merge(md%tstate, TS_STICK, md%closed)
                if (md%closed .and. md%tstate == TS_SLIP .and. ifc%friction /= FRICTION_NONE) then
