@@ -42,8 +42,13 @@
 !! (FACTOR = 100, h the contact element length, A^ the pair's share of the
 !! element areas), and eps_T = eps_n / FACTOR; the system stays symmetric
 !! positive definite.  Within one Uzawa iterate the slip bound is mu lam_n
-!! (Tresca's law, linear modes); the iteration ends only when it equals
-!! mu F_n to 1e-10, so that converged slipping pairs obey Coulomb's law.
+!! (Tresca's law, linear modes) until the penetrations and stick slips are
+!! within tolerance; then it is mu F_n of the current normal force (Coulomb's
+!! law, the coupling corrected by the out-of-balance force), so that converged
+!! slipping pairs carry mu F_n to 1e-10.  A closed pair keeps a tension within
+!! a band (half its start force or multiplier) while the multipliers drive it
+!! to zero, and opens when they do not: a body held by contact alone that is
+!! unloaded to zero rests closed at zero force instead of floating free.
 !! Ref: J. C. Simo, T. A. Laursen, An augmented Lagrangian treatment of contact
 !! problems involving friction, Comput. Struct. 42 (1992) 97-116; P. Wriggers,
 !! Computational Contact Mechanics (2006), ch. 6.
@@ -132,6 +137,7 @@ module contact_algorithm
       real(dp) :: violation = 0.0_dp              !! largest penetration / stick slip at the last check
       integer :: augmentations = 0                !! multiplier updates in the current increment
       real(dp) :: fref = 0.0_dp                   !! largest normal force of an ideal pair committed so far
+      logical :: coulomb = .false.                !! the slip bound is mu F_n (else mu lam_n) in this increment
    end type contact_state_t
 
 contains
@@ -265,6 +271,7 @@ contains
       returning = cdef%opts%update == UPDATE_RETURN
       st%augmentations = 0
       st%violation = 0.0_dp
+      st%coulomb = .false.
       do j = 1, size(st%s)
          associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             md = pair_mode_t()
@@ -792,11 +799,11 @@ contains
    end function round_off_force
 
    !> Forces and modes of an ideal pair for its current multipliers:
-   !! F_n = max(0, lam_n + eps_n u_n), F_T = proj(lam_T + eps_T du_T) onto
-   !! [-g, g] with the slip bound g = mu lam_n of the same multipliers: within
-   !! one Uzawa iterate the pair obeys Tresca's law (a fixed bound), so every
-   !! mode is linear and the system symmetric; the multiplier update then
-   !! moves the bound to mu F_n (Coulomb at convergence).
+   !! F_n = lam_n + eps_n u_n when closed (0 open), F_T = proj(lam_T + eps_T du_T)
+   !! onto [-g, g] with the slip bound g = mu lam_n of the same multipliers
+   !! (Tresca's law: every mode linear, the system symmetric) or, once
+   !! st%coulomb is set, g = mu F_n (Coulomb's law).  Right after a multiplier
+   !! update (md%hold) the modes are kept and only the forces follow.
    pure subroutine evaluate_ideal(cdef, st, jp, chg)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(inout) :: st
@@ -837,14 +844,17 @@ contains
          st%fn(jp) = merge(trial_n, 0.0_dp, md%closed)
          st%ft(jp) = 0.0_dp
          if (md%closed .and. ifc%friction /= FRICTION_NONE) then
-            ! Coulomb's bound of the current normal force (not Tresca's of the
-            ! multiplier): a slipping pair carries mu F_n at every solution, so
-            ! the multiplier iteration need not bring mu lam_n to mu F_n (a slow,
-            ! linear iteration through the sticking pairs' soft tangential
-            ! penalty: 86-123 solutions per increment on a frictional ring).
-            ! The matrix keeps K_T = 0 (symmetric): the coupling mu dF_n is
-            ! corrected by the out-of-balance force of the next solutions.
-            lim = md%mu*max(st%fn(jp), 0.0_dp)
+            ! the slip bound: Tresca's mu lam_n (linear modes, one solution per
+            ! multiplier update) until the penetrations and stick slips are within
+            ! tolerance, then Coulomb's mu F_n of the current normal force
+            ! (augment_multipliers sets st%coulomb): a slipping pair then carries
+            ! mu F_n at every solution, and the multipliers need not bring
+            ! mu lam_n to mu F_n to 1e-10, a linear iteration as slow as the
+            ! sticking pairs' soft tangential penalty makes it (86-123 solutions
+            ! per increment on a frictional ring of segment pairs).  The matrix
+            ! keeps K_T = 0 (symmetric): the coupling mu dF_n is corrected by
+            ! the out-of-balance force of the next solutions.
+            lim = md%mu*max(merge(st%fn(jp), st%lam_n(jp), st%coulomb), 0.0_dp)
             trial_t = st%lam_t(jp) + st%eps_t(jp)*st%dut(jp)
             ! the cone is widened by the round-off allowance of the Coulomb check
             ! (1e-10 F_n): with lam_n = 0 (the first iterate of a pair closed
@@ -885,10 +895,14 @@ contains
    !! bodies balance the current forces.  The increment is converged when every
    !! closed ideal pair penetrates by at most tol_pen (|u_n|: penetration, or a
    !! gap under load, the complementarity defect), every sticking one slipped
-   !! by at most tol_pen in the increment, and every slipping one carries
-   !! |F_T| = mu F_n to 1e-10 of the largest normal force (its Tresca bound
-   !! mu lam_n has caught up with mu F_n).  Otherwise the multipliers take the
-   !! current forces (lam <- F) and `done` is false.
+   !! by at most tol_pen in the increment, every slipping one carries
+   !! |F_T| = mu F_n and no closed one a tension, both to 1e-10 of the largest
+   !! normal force of the increment or of the run.  Otherwise the multipliers
+   !! take the current forces (lam <- F), the next evaluation keeps the modes,
+   !! and `done` is false; within tolerance, slipping pairs off mu F_n switch
+   !! the slip bound to Coulomb's for the rest of the increment, and pairs in a
+   !! tension that does not collapse (it exceeds half the largest multiplier:
+   !! not a body coming to rest at zero load) are released to open.
    pure subroutine augment_multipliers(cdef, st, done)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(inout) :: st
@@ -921,6 +935,8 @@ contains
       st%violation = viol
       done = viol <= st%tol_pen .and. coulomb <= fround .and. tension <= fround
       if (done) return
+      ! within tolerance but slipping pairs off mu F_n: Coulomb's bound from now on
+      if (viol <= st%tol_pen .and. coulomb > fround) st%coulomb = .true.
       if (viol <= st%tol_pen .and. tension > fround .and. fabs > 0.5_dp*lamabs) then
          ! closed pairs in tension whose forces the multipliers do not drive to
          ! zero (the forces do not collapse as those of a body at rest under a
