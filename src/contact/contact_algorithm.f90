@@ -76,6 +76,10 @@ module contact_algorithm
    !! it keeps its last mode for the rest of the increment (frozen: chatter).
    integer, parameter :: MAX_SWITCH = 6
 
+   !> Ideal law: the regularising tangential spring of a slipping pair in the
+   !! matrix, relative to eps_T (set_kt_ideal).
+   real(dp), parameter :: KT_SLIP_REG = 1.0e-6_dp
+
    !> Committed state of one pair (end of an increment).
    type :: pair_state_t
       logical :: closed = .false.
@@ -287,7 +291,7 @@ contains
                if (md%tstate == TS_SLIP) md%sdir = sign(1.0_dp, s%ft)
                md%kte = st%eps_t(j)
                if (md%closed) md%kn = st%eps_n(j)
-               call set_kt(ifc, md)
+               call set_kt_ideal(ifc, md)
                st%lam_n(j) = s%fn
                st%lam_t(j) = s%ft
                cycle
@@ -887,9 +891,25 @@ contains
          md%kn = merge(st%eps_n(jp), 0.0_dp, md%closed)
          md%kte = st%eps_t(jp)
          md%hold = .false.
-         call set_kt(ifc, md)
+         call set_kt_ideal(ifc, md)
       end associate
    end subroutine evaluate_ideal
+
+   !> Tangential stiffness of an ideal pair for the solve: eps_T sticking, and
+   !! slipping a regularising spring KT_SLIP_REG eps_T in the matrix only (its
+   !! force stays mu F_n: the out-of-balance force of the next solution corrects
+   !! the difference).  A body held tangentially by friction alone whose pairs
+   !! all slip at once -- every pair of the first iterate of a body pressed
+   !! without multipliers (the bound mu lam_n = 0), every pair at zero load --
+   !! would otherwise be free to translate (a singular system); with the spring
+   !! it stays at rest when the friction forces balance, and it moves on (and
+   !! the increment fails, out of balance) when they cannot.
+   pure subroutine set_kt_ideal(ifc, md)
+      type(interface_t), intent(in) :: ifc
+      type(pair_mode_t), intent(inout) :: md
+      call set_kt(ifc, md)
+      if (ifc%friction /= FRICTION_NONE .and. md%closed .and. md%tstate == TS_SLIP) md%kt = KT_SLIP_REG*md%kte
+   end subroutine set_kt_ideal
 
    !> Uzawa step of the ideal pairs, called when the modes have settled and the
    !! bodies balance the current forces.  The increment is converged when every
