@@ -44,8 +44,13 @@
 !! (FACTOR = 100, h the contact element length, A^ the pair's share of the
 !! element areas), and eps_T = eps_n / FACTOR; the system stays symmetric
 !! positive definite.  Within one Uzawa iterate the slip bound is mu lam_n
-!! (Tresca's law, linear modes); the iteration ends only when it equals
-!! mu F_n to 1e-10, so that converged slipping pairs obey Coulomb's law.
+!! (Tresca's law, linear modes) until the penetrations and stick slips are
+!! within tolerance; then it is mu F_n of the current normal force (Coulomb's
+!! law, the coupling corrected by the out-of-balance force), so that converged
+!! slipping pairs carry mu F_n to 1e-10.  A closed pair keeps a tension within
+!! a band (half its start force or multiplier) while the multipliers drive it
+!! to zero, and opens when they do not: a body held by contact alone that is
+!! unloaded to zero rests closed at zero force instead of floating free.
 !! Ref: J. C. Simo, T. A. Laursen, An augmented Lagrangian treatment of contact
 !! problems involving friction, Comput. Struct. 42 (1992) 97-116; P. Wriggers,
 !! Computational Contact Mechanics (2006), ch. 6.
@@ -78,6 +83,9 @@ module contact_algorithm
    !! cycle between tangential states, as a fraction of K_T^e (about the branch slope
    !! kappa = 0.04-0.05): a slipping pair keeps a stiffness that damps the cycle.
    real(dp), parameter :: KSEC_LOW = 0.05_dp
+   !> Ideal law: the regularising tangential spring of a slipping pair in the
+   !! matrix, relative to eps_T (set_kt_ideal).
+   real(dp), parameter :: KT_SLIP_REG = 1.0e-6_dp
 
    !> Committed state of one pair (end of an increment).
    type :: pair_state_t
@@ -120,6 +128,10 @@ module contact_algorithm
       logical :: tstable = .false.        !! RETURN: back in a state met before: the secant stiffness of
                                           !! the law over the increment from then on (tangential_return)
       real(dp) :: sdir = 0.0_dp           !! ideal law: direction (+-1) of the current slip
+      logical :: released = .false.       !! ideal law: kept closed in tension until the multipliers
+                                          !! settled, then let open (no tension band any more)
+      logical :: hold = .false.           !! ideal law: the multipliers were just updated; the
+                                          !! next evaluation keeps the modes (see augment_multipliers)
    end type pair_mode_t
 
    type :: contact_state_t
@@ -139,6 +151,8 @@ module contact_algorithm
       real(dp) :: tol_pen = 0.0_dp                !! accepted penetration and stick slip [length]
       real(dp) :: violation = 0.0_dp              !! largest penetration / stick slip at the last check
       integer :: augmentations = 0                !! multiplier updates in the current increment
+      real(dp) :: fref = 0.0_dp                   !! largest normal force of an ideal pair committed so far
+      logical :: coulomb = .false.                !! the slip bound is mu F_n (else mu lam_n) in this increment
    end type contact_state_t
 
 contains
@@ -272,6 +286,7 @@ contains
       returning = cdef%opts%update == UPDATE_RETURN
       st%augmentations = 0
       st%violation = 0.0_dp
+      st%coulomb = .false.
       do j = 1, size(st%s)
          associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             md = pair_mode_t()
@@ -287,7 +302,7 @@ contains
                if (md%tstate == TS_SLIP) md%sdir = sign(1.0_dp, s%ft)
                md%kte = st%eps_t(j)
                if (md%closed) md%kn = st%eps_n(j)
-               call set_kt(ifc, md)
+               call set_kt_ideal(ifc, md)
                st%lam_n(j) = s%fn
                st%lam_t(j) = s%ft
                cycle
@@ -831,23 +846,50 @@ contains
       end select
    end subroutine tangential_explicit
 
+   !> Round-off of the normal forces of ideal pair j: 1e-10 of the largest
+   !! normal force of the run so far or of its multiplier.
+   pure real(dp) function round_off_force(st, j) result(f)
+      type(contact_state_t), intent(in) :: st
+      integer, intent(in) :: j
+      f = 1.0e-10_dp*max(st%fref, abs(st%lam_n(j)))
+   end function round_off_force
+
    !> Forces and modes of an ideal pair for its current multipliers:
-   !! F_n = max(0, lam_n + eps_n u_n), F_T = proj(lam_T + eps_T du_T) onto
-   !! [-g, g] with the slip bound g = mu lam_n of the same multipliers: within
-   !! one Uzawa iterate the pair obeys Tresca's law (a fixed bound), so every
-   !! mode is linear and the system symmetric; the multiplier update then
-   !! moves the bound to mu F_n (Coulomb at convergence).
+   !! F_n = lam_n + eps_n u_n when closed (0 open), F_T = proj(lam_T + eps_T du_T)
+   !! onto [-g, g] with the slip bound g = mu lam_n of the same multipliers
+   !! (Tresca's law: every mode linear, the system symmetric) or, once
+   !! st%coulomb is set, g = mu F_n (Coulomb's law).  Right after a multiplier
+   !! update (md%hold) the modes are kept and only the forces follow.
    pure subroutine evaluate_ideal(cdef, st, jp, chg)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(inout) :: st
       integer, intent(in) :: jp
       logical, intent(inout) :: chg
-      real(dp) :: trial_n, trial_t, lim
+      real(dp) :: trial_n, trial_t, lim, band
       integer :: ts
       logical :: now_closed
       associate (s => st%s(jp), md => st%md(jp), ifc => cdef%ifaces(cdef%pairs(jp)%iface))
          trial_n = st%lam_n(jp) + st%eps_n(jp)*(s%un + st%dun(jp))
-         now_closed = trial_n > 0.0_dp
+         ! an open pair closes when its trial force is a compression; a closed one
+         ! opens when its trial force is a tension beyond the band: half its
+         ! multiplier or its force at the start of the increment (and at least the
+         ! round-off of the run's forces).  Within the band it carries the tension
+         ! until the multipliers settle: a body held by contact alone that is
+         ! unloaded to zero has every pair closed at zero force, its first
+         ! penalty forces are of mixed sign (they sum to the zero load), and
+         ! opening each pair in tension would leave a search over the pairs
+         ! for the one the body rests on, or none (a singular system).  Released
+         ! pairs (augment_multipliers: a tension that the multipliers do not drive
+         ! to zero) keep the round-off band only.
+         band = round_off_force(st, jp)
+         if (.not. md%released) band = max(band, 0.5_dp*max(abs(st%lam_n(jp)), s%fn))
+         if (md%hold) then
+            now_closed = md%closed
+         else if (md%closed) then
+            now_closed = trial_n > -band
+         else
+            now_closed = trial_n > 0.0_dp
+         end if
          if (now_closed .neqv. md%closed) then
             md%closed = now_closed
             md%newly_closed = now_closed .and. .not. s%closed
@@ -855,17 +897,30 @@ contains
             chg = .true.
             md%nswitch = md%nswitch + 1
          end if
-         st%fn(jp) = max(trial_n, 0.0_dp)
+         st%fn(jp) = merge(trial_n, 0.0_dp, md%closed)
          st%ft(jp) = 0.0_dp
          if (md%closed .and. ifc%friction /= FRICTION_NONE) then
-            lim = md%mu*max(st%lam_n(jp), 0.0_dp)
+            ! the slip bound: Tresca's mu lam_n (linear modes, one solution per
+            ! multiplier update) until the penetrations and stick slips are within
+            ! tolerance, then Coulomb's mu F_n of the current normal force
+            ! (augment_multipliers sets st%coulomb): a slipping pair then carries
+            ! mu F_n at every solution, and the multipliers need not bring
+            ! mu lam_n to mu F_n to 1e-10, a linear iteration as slow as the
+            ! sticking pairs' soft tangential penalty makes it (86-123 solutions
+            ! per increment on a frictional ring of segment pairs).  The matrix
+            ! keeps K_T = 0 (symmetric): the coupling mu dF_n is corrected by
+            ! the out-of-balance force of the next solutions.
+            lim = md%mu*max(merge(st%fn(jp), st%lam_n(jp), st%coulomb), 0.0_dp)
             trial_t = st%lam_t(jp) + st%eps_t(jp)*st%dut(jp)
             ! the cone is widened by the round-off allowance of the Coulomb check
             ! (1e-10 F_n): with lam_n = 0 (the first iterate of a pair closed
             ! without force) the bound is zero, and an exact test would decide
             ! stick or slip, and so the number of repeats, by the sign of the
             ! round-off in du_T of a pair that does not move tangentially
-            if (abs(trial_t) <= lim + 1.0e-10_dp*st%fn(jp) .or. &
+            if (md%hold .and. md%tstate == TS_SLIP) then
+               ts = TS_SLIP
+               st%ft(jp) = md%sdir*lim
+            else if (md%hold .or. abs(trial_t) <= lim + 1.0e-10_dp*max(st%fn(jp), 0.0_dp) .or. &
                 (md%tstate == TS_SLIP .and. trial_t*md%sdir < 0.0_dp)) then
                ! stick; also a slipping pair whose trial force has turned
                ! against its slip: it sticks first and its stick stiffness
@@ -887,48 +942,91 @@ contains
          end if
          md%kn = merge(st%eps_n(jp), 0.0_dp, md%closed)
          md%kte = st%eps_t(jp)
-         call set_kt(ifc, md)
+         md%hold = .false.
+         call set_kt_ideal(ifc, md)
       end associate
    end subroutine evaluate_ideal
+
+   !> Tangential stiffness of an ideal pair for the solve: eps_T sticking, and
+   !! slipping a regularising spring KT_SLIP_REG eps_T in the matrix only (its
+   !! force stays mu F_n: the out-of-balance force of the next solution corrects
+   !! the difference).  A body held tangentially by friction alone whose pairs
+   !! all slip at once -- every pair of the first iterate of a body pressed
+   !! without multipliers (the bound mu lam_n = 0), every pair at zero load --
+   !! would otherwise be free to translate (a singular system); with the spring
+   !! it stays at rest when the friction forces balance, and it moves on (and
+   !! the increment fails, out of balance) when they cannot.
+   pure subroutine set_kt_ideal(ifc, md)
+      type(interface_t), intent(in) :: ifc
+      type(pair_mode_t), intent(inout) :: md
+      call set_kt(ifc, md)
+      if (ifc%friction /= FRICTION_NONE .and. md%closed .and. md%tstate == TS_SLIP) md%kt = KT_SLIP_REG*md%kte
+   end subroutine set_kt_ideal
 
    !> Uzawa step of the ideal pairs, called when the modes have settled and the
    !! bodies balance the current forces.  The increment is converged when every
    !! closed ideal pair penetrates by at most tol_pen (|u_n|: penetration, or a
    !! gap under load, the complementarity defect), every sticking one slipped
-   !! by at most tol_pen in the increment, and every slipping one carries
-   !! |F_T| = mu F_n to 1e-10 of the largest normal force (its Tresca bound
-   !! mu lam_n has caught up with mu F_n).  Otherwise the multipliers take the
-   !! current forces (lam <- F) and `done` is false.
+   !! by at most tol_pen in the increment, every slipping one carries
+   !! |F_T| = mu F_n and no closed one a tension, both to 1e-10 of the largest
+   !! normal force of the increment or of the run.  Otherwise the multipliers
+   !! take the current forces (lam <- F), the next evaluation keeps the modes,
+   !! and `done` is false; within tolerance, slipping pairs off mu F_n switch
+   !! the slip bound to Coulomb's for the rest of the increment, and pairs in a
+   !! tension that does not collapse (it exceeds half the largest multiplier:
+   !! not a body coming to rest at zero load) are released to open.
    pure subroutine augment_multipliers(cdef, st, done)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(inout) :: st
       logical, intent(out) :: done
       integer :: j
-      real(dp) :: viol, fmax, coulomb
+      real(dp) :: viol, fmax, coulomb, tension, fabs, lamabs, fround
       viol = 0.0_dp
       coulomb = 0.0_dp
       fmax = 0.0_dp
+      tension = 0.0_dp
+      fabs = 0.0_dp
+      lamabs = 0.0_dp
       do j = 1, size(st%s)
          if (is_ideal(cdef, j)) fmax = max(fmax, st%fn(j))
       end do
+      fround = 1.0e-10_dp*max(fmax, st%fref)
       do j = 1, size(st%s)
          if (.not. is_ideal(cdef, j)) cycle
          associate (s => st%s(j), md => st%md(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             if (.not. md%closed) cycle
             viol = max(viol, abs(s%un + st%dun(j)))
+            tension = max(tension, -st%fn(j))
+            fabs = max(fabs, abs(st%fn(j)))
+            lamabs = max(lamabs, abs(st%lam_n(j)))
             if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_STICK) viol = max(viol, abs(st%dut(j)))
             if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_SLIP) &
                coulomb = max(coulomb, abs(abs(st%ft(j)) - md%mu*st%fn(j)))
          end associate
       end do
       st%violation = viol
-      done = viol <= st%tol_pen .and. coulomb <= 1.0e-10_dp*fmax
+      done = viol <= st%tol_pen .and. coulomb <= fround .and. tension <= fround
       if (done) return
+      ! within tolerance but slipping pairs off mu F_n: Coulomb's bound from now on
+      if (viol <= st%tol_pen .and. coulomb > fround) st%coulomb = .true.
+      if (viol <= st%tol_pen .and. tension > fround .and. fabs > 0.5_dp*lamabs) then
+         ! closed pairs in tension whose forces the multipliers do not drive to
+         ! zero (the forces do not collapse as those of a body at rest under a
+         ! zero load do): they open (their band is the round-off from now on)
+         do j = 1, size(st%s)
+            if (is_ideal(cdef, j) .and. st%md(j)%closed .and. st%fn(j) < -fround) st%md(j)%released = .true.
+         end do
+      end if
       st%augmentations = st%augmentations + 1
       do j = 1, size(st%s)
          if (.not. is_ideal(cdef, j)) cycle
          st%lam_n(j) = st%fn(j)
          st%lam_t(j) = st%ft(j)
+         ! the forces of the new multipliers at the current displacements are not
+         ! a test of the modes: a pair's trial force jumps by lam_new - lam_old
+         ! until the next solution moves the bodies by the multipliers' change
+         ! (e.g. by the whole force lam_old of a pair that is unloaded to zero)
+         st%md(j)%hold = .true.
       end do
    end subroutine augment_multipliers
 
@@ -959,7 +1057,9 @@ contains
                ! no elastic layer: all tangential motion of a slipping pair is
                ! irreversible; a sticking one moved by at most tol_pen
                s%closed = md%closed
-               s%fn = merge(st%fn(j), 0.0_dp, md%closed)
+               ! (a tension left is within the round-off of the run's forces)
+               s%fn = merge(max(st%fn(j), 0.0_dp), 0.0_dp, md%closed)
+               st%fref = max(st%fref, s%fn)
                s%ft = merge(st%ft(j), 0.0_dp, md%closed)
                s%tstate = merge(md%tstate, TS_STICK, md%closed)
                if (md%closed .and. md%tstate == TS_SLIP .and. ifc%friction /= FRICTION_NONE) then
