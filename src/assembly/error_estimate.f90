@@ -6,8 +6,12 @@
 !! Bodies.  The recovered stresses sigma* come from superconvergent patch
 !! recovery: around every corner node of the mesh, the elements that share
 !! it (the node's patch; elements of another material form a patch of their
-!! own, since the stresses jump there) fit one polynomial to their Gauss-point
-!! stresses (kernels in `error_estimator`); every patch gives its polynomial's
+!! own, since the stresses jump there) fit one polynomial to their sampled
+!! stresses (kernels in `error_estimator`): the Gauss-point stresses of T3
+!! and Q4, and for Q8 and Q9 the stresses at their 2 x 2 Gauss points, the
+!! superconvergent points of the quadratic elements (ZZ Part 1; sampling at
+!! the 3 x 3 points of their stiffness rule underestimates the error by 15 -
+!! 30 %); every patch gives its polynomial's
 !! value at all nodes of its elements, and the values a node receives are
 !! averaged (per material).  A patch whose points do not determine the
 !! element's polynomial (a corner patch of one T3, a strip one element thick)
@@ -45,6 +49,8 @@ module error_estimate
    use records, only: body_fields_t, contact_fields_t, NS_OPEN
    use topology, only: corner_count
    use error_estimator, only: MAX_TERMS, recovery_terms, patch_fit, patch_value, element_error_energy
+   use quadrature, only: max_gp
+   use solid2d, only: element_stresses
    implicit none
    private
    public :: estimate_error, recover_patch_stresses, interface_resolution
@@ -63,7 +69,8 @@ contains
       real(dp) :: elcod(2, MAX_NODE), total
       integer :: ie, nn, imat, ierr
 
-      call recover_patch_stresses(m, body, sstar)
+      call recover_patch_stresses(m, body, sstar, status)
+      if (.not. status%ok()) return
       allocate (e2(m%nelem), u2(m%nelem))
       do ie = 1, m%nelem
          nn = m%nnode_e(ie)
@@ -101,14 +108,18 @@ contains
    !> Recovered stresses sigma* at the nodes of every element, (4, MAX_NODE,
    !! nelem), by superconvergent patch recovery from the Gauss-point stresses
    !! of the body fields (see the module header).
-   subroutine recover_patch_stresses(m, body, sstar)
+   subroutine recover_patch_stresses(m, body, sstar, status)
       type(model_t), intent(in) :: m
       type(body_fields_t), intent(in) :: body
       real(dp), allocatable, intent(out) :: sstar(:, :, :)
-      integer, allocatable :: slot(:, :), pstart(:), pelem(:), matslot(:, :)
-      real(dp), allocatable :: acc(:, :), acc2(:, :)
+      type(status_t), intent(inout) :: status
+      integer, allocatable :: slot(:, :), pstart(:), pelem(:), matslot(:, :), sstart(:)
+      real(dp), allocatable :: acc(:, :), acc2(:, :), sxy(:, :), ssig(:, :)
       integer, allocatable :: cnt(:), cnt2(:)
       integer :: ie, k, ip, nslot, nmat, pass
+
+      call sample_stresses(m, body, sstart, sxy, ssig, status)
+      if (.not. status%ok()) return
 
       ! one recovered value per (node, material): the slots
       nmat = max(1, m%nmats)
@@ -155,8 +166,9 @@ contains
       cnt = 0
       acc2 = 0.0_dp
       cnt2 = 0
-      ! pass 1: every patch with the elements' polynomial; pass 2: the slots no
-      ! patch reached, from the patches around them with a smaller polynomial
+      ! pass 1: the interior patches with the elements' polynomial; pass 2: the
+      ! slots no interior patch reached, from the patches around them (boundary
+      ! ones too), with the elements' polynomial or, failing that, a smaller one
       do pass = 1, 2
          do ip = 1, m%npoin
             if (pstart(ip + 1) == pstart(ip)) cycle
@@ -180,40 +192,47 @@ contains
    contains
 
       !> Fit the patch of corner node ip (its elements pel), one material at a
-      !! time, and add the values at the elements' nodes.
+      !! time, and add the values at the elements' nodes.  Pass 1 fits only
+      !! interior patches (every edge at ip shared by two elements of the
+      !! material): a boundary patch fits from one side and, on a curved
+      !! boundary, from points near one line, where its polynomial is nearly
+      !! undetermined.
       subroutine fit_node_patch(ip, pel, pass)
          integer, intent(in) :: ip, pel(:), pass
          real(dp), allocatable :: xy(:, :), sg(:, :)
          real(dp) :: coef(MAX_TERMS, 4), h, centre(2)
          integer :: imat, j, ie, k, npt, g0, g1, nterm, t, tries(3)
-         logical :: ok, need
+         logical :: ok, need, interior
          centre = m%coord(:, ip)
          do j = 1, size(pel)
             imat = m%matno(pel(j))
             ! each material once: at its first element in the patch
             if (any(m%matno(pel(1:j - 1)) == imat)) cycle
             need = .false.
+            interior = .true.
             npt = 0
             h = 0.0_dp
             nterm = MAX_TERMS
             do k = j, size(pel)
                ie = pel(k)
                if (m%matno(ie) /= imat) cycle
-               npt = npt + body%gp_start(ie + 1) - body%gp_start(ie)
+               npt = npt + sstart(ie + 1) - sstart(ie)
                nterm = min(nterm, recovery_terms(m%nnode_e(ie)))
                h = max(h, maxval(abs(m%coord(:, m%lnods(1:m%nnode_e(ie), ie)) - spread(centre, 2, m%nnode_e(ie)))))
                if (any(cnt(slot(1:m%nnode_e(ie), ie)) == 0)) need = .true.
+               if (interior) interior = edges_shared(ip, ie, pel, imat)
             end do
+            if (pass == 1 .and. .not. interior) cycle
             if (pass == 2 .and. .not. need) cycle
             allocate (xy(2, npt), sg(4, npt))
             npt = 0
             do k = j, size(pel)
                ie = pel(k)
                if (m%matno(ie) /= imat) cycle
-               g0 = body%gp_start(ie)
-               g1 = body%gp_start(ie + 1) - 1
-               xy(:, npt + 1:npt + g1 - g0 + 1) = body%xygp(:, g0:g1)
-               sg(:, npt + 1:npt + g1 - g0 + 1) = body%sig_gp(:, g0:g1)
+               g0 = sstart(ie)
+               g1 = sstart(ie + 1) - 1
+               xy(:, npt + 1:npt + g1 - g0 + 1) = sxy(:, g0:g1)
+               sg(:, npt + 1:npt + g1 - g0 + 1) = ssig(:, g0:g1)
                npt = npt + g1 - g0 + 1
             end do
             tries = [nterm, 3, 1]
@@ -233,6 +252,30 @@ contains
          end do
       end subroutine fit_node_patch
 
+      !> Both corner edges of element ie at its corner node ip are shared with
+      !! another element of material imat of the patch pel.
+      logical function edges_shared(ip, ie, pel, imat) result(shared)
+         integer, intent(in) :: ip, ie, pel(:), imat
+         integer :: nc, kc, side, other, k, ke, nce
+         nc = corner_count(m%nnode_e(ie))
+         kc = findloc(m%lnods(1:nc, ie), ip, 1)
+         shared = .true.
+         do side = -1, 1, 2
+            other = m%lnods(modulo(kc - 1 + side, nc) + 1, ie)
+            shared = .false.
+            do k = 1, size(pel)
+               ke = pel(k)
+               if (ke == ie .or. m%matno(ke) /= imat) cycle
+               nce = corner_count(m%nnode_e(ke))
+               if (any(m%lnods(1:nce, ke) == other)) then
+                  shared = .true.
+                  exit
+               end if
+            end do
+            if (.not. shared) return
+         end do
+      end function edges_shared
+
       subroutine add_values(ie, nterm, coef, centre, h, pass)
          integer, intent(in) :: ie, nterm, pass
          real(dp), intent(in) :: coef(MAX_TERMS, 4), centre(2), h
@@ -249,6 +292,50 @@ contains
          end do
       end subroutine add_values
    end subroutine recover_patch_stresses
+
+   !> The stresses the patches fit, element by element (sstart: first sample
+   !! of each element): the Gauss-point stresses of the body fields, except
+   !! for Q8 and Q9 with a rule other than 2 x 2, which are sampled at their
+   !! 2 x 2 Gauss points from the displacements.
+   subroutine sample_stresses(m, body, sstart, sxy, ssig, status)
+      type(model_t), intent(in) :: m
+      type(body_fields_t), intent(in) :: body
+      integer, allocatable, intent(out) :: sstart(:)
+      real(dp), allocatable, intent(out) :: sxy(:, :), ssig(:, :)
+      type(status_t), intent(inout) :: status
+      real(dp) :: elcod(2, MAX_NODE), eldis(2*MAX_NODE), xyg(2, max_gp), sg(4, max_gp), sn(4, MAX_NODE)
+      integer :: ie, nn, ngp, k, ierr, imat
+      logical, allocatable :: own(:)
+      allocate (sstart(m%nelem + 1), own(m%nelem))
+      sstart(1) = 1
+      do ie = 1, m%nelem
+         ngp = body%gp_start(ie + 1) - body%gp_start(ie)
+         own(ie) = m%nnode_e(ie) < 8 .or. ngp == 4
+         sstart(ie + 1) = sstart(ie) + merge(ngp, 4, own(ie))
+      end do
+      allocate (sxy(2, sstart(m%nelem + 1) - 1), ssig(4, sstart(m%nelem + 1) - 1))
+      do ie = 1, m%nelem
+         if (own(ie)) then
+            sxy(:, sstart(ie):sstart(ie + 1) - 1) = body%xygp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1)
+            ssig(:, sstart(ie):sstart(ie + 1) - 1) = body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1)
+            cycle
+         end if
+         nn = m%nnode_e(ie)
+         imat = m%matno(ie)
+         elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
+         do k = 1, nn
+            eldis(2*k - 1:2*k) = body%disp(:, m%lnods(k, ie))
+         end do
+         call element_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, 2, &
+                               eldis(1:2*nn), ngp, xyg, sg, sn(:, 1:nn), ierr)
+         if (ierr /= 0 .or. ngp /= 4) then
+            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (error estimate): its 2 x 2 Gauss points fail')
+            return
+         end if
+         sxy(:, sstart(ie):sstart(ie) + 3) = xyg(:, 1:4)
+         ssig(:, sstart(ie):sstart(ie) + 3) = sg(:, 1:4)
+      end do
+   end subroutine sample_stresses
 
    !> Resolution indicators of the contact pressure (see the module header):
    !! cf%resolution per pair, cf%zone_width, zone_pairs and zone_jump per
