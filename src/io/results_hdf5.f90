@@ -692,10 +692,11 @@ contains
       call write_real1(cid, 'stiffness_tangential', cf%stiffness_tangential, err)
       if (allocated(cf%switches)) call write_int1(cid, 'switches', cf%switches, err)
       if (allocated(cf%resolution)) then
-         ! how well the pairs resolve the pressure (module error_estimate); zones per interface
+         ! how well the pairs resolve the pressure (module error_estimate); the zone of each
+         ! interface as attributes (the datasets are per pair)
          call write_real1(cid, 'resolution', cf%resolution, err)
-         call write_real1(cid, 'zone_width', cf%zone_width, err)
-         call write_int1(cid, 'zone_pairs', cf%zone_pairs, err)
+         call attr_real1(cid, 'zone_width', cf%zone_width, err)
+         call attr_int1(cid, 'zone_pairs', cf%zone_pairs, err)
       end if
       call h5gclose_f(cid, e)
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the contact results')
@@ -807,6 +808,27 @@ contains
       end if
       call h5sclose_f(sid, e)
    end subroutine attr_int
+
+   subroutine attr_int1(loc, name, v, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: v(:)
+      integer, intent(inout) :: err
+      integer(hid_t) :: sid, aid
+      integer(hsize_t) :: dims(1)
+      integer :: e
+      dims = [size(v, kind=hsize_t)]
+      call h5screate_simple_f(1, dims, sid, e)
+      call keep(e, err)
+      call h5acreate_f(loc, name, H5T_NATIVE_INTEGER, sid, aid, e)
+      call keep(e, err)
+      if (e >= 0) then
+         call h5awrite_f(aid, H5T_NATIVE_INTEGER, v, dims, e)
+         call keep(e, err)
+         call h5aclose_f(aid, e)
+      end if
+      call h5sclose_f(sid, e)
+   end subroutine attr_int1
 
    subroutine attr_real0(loc, name, v, err)
       integer(hid_t), intent(in) :: loc
