@@ -12,8 +12,8 @@
 !! superconvergent points of the quadratic elements (ZZ Part 1; sampling at
 !! the 3 x 3 points of their stiffness rule underestimates the error by 15 -
 !! 30 %); every patch gives its polynomial's
-!! value at all nodes of its elements, and the values a node receives are
-!! averaged (per material).  A patch whose points do not determine the
+!! value at all nodes of its elements, and the values a node receives (one
+!! from each patch that holds it) are averaged (per material).  A patch whose points do not determine the
 !! element's polynomial (a corner patch of one T3, a strip one element thick)
 !! gives values only to the nodes no full patch reached, with the linear and
 !! then the constant polynomial.  sigma* is interpolated in each element by its
@@ -48,12 +48,21 @@ module error_estimate
    use model, only: model_t, MAX_NODE
    use records, only: body_fields_t, contact_fields_t, NS_OPEN
    use topology, only: corner_count
-   use error_estimator, only: MAX_TERMS, recovery_terms, patch_fit, patch_value, element_error_energy
+   use error_estimator, only: MAX_TERMS, recovery_terms, patch_fit, patch_value, element_error_energy, &
+                              rule_shapes, point_stresses
    use quadrature, only: max_gp
-   use solid2d, only: element_stresses
    implicit none
    private
    public :: estimate_error, recover_patch_stresses, interface_resolution
+
+   !> Shape functions, natural derivatives and weights of one Gauss rule of
+   !! one element type (the same for every element of the type).
+   type :: rule_t
+      integer :: ngp = 0
+      real(dp), allocatable :: shp(:, :)       !! (nnode, ngp)
+      real(dp), allocatable :: der(:, :, :)    !! (2, nnode, ngp)
+      real(dp), allocatable :: w(:)            !! (ngp)
+   end type rule_t
 
 contains
 
@@ -67,18 +76,23 @@ contains
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: sstar(:, :, :), e2(:), u2(:)
       real(dp) :: elcod(2, MAX_NODE), total
+      type(rule_t) :: rules(MAX_NODE)
       integer :: ie, nn, imat, ierr
 
       call recover_patch_stresses(m, body, sstar, status)
       if (.not. status%ok()) return
+      call element_rules(m, m%ngaus, rules)
       allocate (e2(m%nelem), u2(m%nelem))
       do ie = 1, m%nelem
          nn = m%nnode_e(ie)
          imat = m%matno(ie)
          elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
-         call element_error_energy(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
-                                   m%mats(imat)%thick, m%ngaus, sstar(:, 1:nn, ie), &
-                                   body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1), e2(ie), u2(ie), ierr)
+         ierr = -1
+         if (rules(nn)%ngp == body%gp_start(ie + 1) - body%gp_start(ie)) &
+            call element_error_energy(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
+                                      m%mats(imat)%thick, rules(nn)%ngp, rules(nn)%shp, rules(nn)%der, rules(nn)%w, &
+                                      sstar(:, 1:nn, ie), body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1), &
+                                      e2(ie), u2(ie), ierr)
          if (ierr /= 0) then
             call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (error estimate): no valid Gauss rule or det J <= 0')
             return
@@ -114,9 +128,9 @@ contains
       real(dp), allocatable, intent(out) :: sstar(:, :, :)
       type(status_t), intent(inout) :: status
       integer, allocatable :: slot(:, :), pstart(:), pelem(:), matslot(:, :), sstart(:)
-      real(dp), allocatable :: acc(:, :), acc2(:, :), sxy(:, :), ssig(:, :)
-      integer, allocatable :: cnt(:), cnt2(:)
-      integer :: ie, k, ip, nslot, nmat, pass
+      real(dp), allocatable :: acc(:, :), acc2(:, :), sxy(:, :), ssig(:, :), wxy(:, :), wsg(:, :)
+      integer, allocatable :: cnt(:), cnt2(:), seen(:)
+      integer :: ie, k, ip, nslot, nmat, pass, maxpt, maxnn, npatch
 
       call sample_stresses(m, body, sstart, sxy, ssig, status)
       if (.not. status%ok()) return
@@ -124,7 +138,9 @@ contains
       ! one recovered value per (node, material): the slots
       nmat = max(1, m%nmats)
       if (m%nelem > 0) nmat = max(nmat, maxval(m%matno))
-      allocate (matslot(nmat, m%npoin), slot(MAX_NODE, m%nelem))
+      maxnn = 1
+      if (m%nelem > 0) maxnn = maxval(m%nnode_e(1:m%nelem))
+      allocate (matslot(nmat, m%npoin), slot(maxnn, m%nelem))
       matslot = 0
       slot = 0
       nslot = 0
@@ -139,29 +155,20 @@ contains
          end do
       end do
       deallocate (matslot)
-      ! the patches: elements around every corner node (CSR)
-      allocate (pstart(m%npoin + 1))
-      pstart = 0
-      do ie = 1, m%nelem
-         do k = 1, corner_count(m%nnode_e(ie))
-            pstart(m%lnods(k, ie) + 1) = pstart(m%lnods(k, ie) + 1) + 1
-         end do
-      end do
-      pstart(1) = 1
+      call corner_patches(m, pstart, pelem)
+      ! work arrays for the largest patch
+      maxpt = 1
       do ip = 1, m%npoin
-         pstart(ip + 1) = pstart(ip + 1) + pstart(ip)
-      end do
-      allocate (pelem(pstart(m%npoin + 1) - 1), cnt(m%npoin))
-      cnt = 0
-      do ie = 1, m%nelem
-         do k = 1, corner_count(m%nnode_e(ie))
-            ip = m%lnods(k, ie)
-            pelem(pstart(ip) + cnt(ip)) = ie
-            cnt(ip) = cnt(ip) + 1
+         k = 0
+         do ie = pstart(ip), pstart(ip + 1) - 1
+            k = k + sstart(pelem(ie) + 1) - sstart(pelem(ie))
          end do
+         maxpt = max(maxpt, k)
       end do
-      deallocate (cnt)
-      allocate (acc(4, nslot), cnt(nslot), acc2(4, nslot), cnt2(nslot))
+      allocate (wxy(2, maxpt), wsg(4, maxpt))
+      allocate (acc(4, nslot), cnt(nslot), acc2(4, nslot), cnt2(nslot), seen(nslot))
+      seen = 0
+      npatch = 0
       acc = 0.0_dp
       cnt = 0
       acc2 = 0.0_dp
@@ -175,8 +182,8 @@ contains
             call fit_node_patch(ip, pelem(pstart(ip):pstart(ip + 1) - 1), pass)
          end do
       end do
-      allocate (sstar(4, MAX_NODE, m%nelem))
-      sstar = 0.0_dp
+      ! (4, nnode, nelem) with nnode the largest element's: entries beyond an element's nodes unused
+      allocate (sstar(4, maxnn, m%nelem))
       do ie = 1, m%nelem
          do k = 1, m%nnode_e(ie)
             if (cnt(slot(k, ie)) > 0) then
@@ -199,51 +206,57 @@ contains
       !! undetermined.
       subroutine fit_node_patch(ip, pel, pass)
          integer, intent(in) :: ip, pel(:), pass
-         real(dp), allocatable :: xy(:, :), sg(:, :)
          real(dp) :: coef(MAX_TERMS, 4), h, centre(2)
-         integer :: imat, j, ie, k, npt, g0, g1, nterm, t, tries(3)
-         logical :: ok, need, interior
+         integer :: imat, j, ie, k, n, npt, g0, g1, nterm, t, tries(3)
+         logical :: ok, need
          centre = m%coord(:, ip)
          do j = 1, size(pel)
             imat = m%matno(pel(j))
             ! each material once: at its first element in the patch
-            if (any(m%matno(pel(1:j - 1)) == imat)) cycle
-            need = .false.
-            interior = .true.
+            if (j > 1) then
+               if (any(m%matno(pel(1:j - 1)) == imat)) cycle
+            end if
+            if (pass == 2) then
+               need = .false.
+               do k = j, size(pel)
+                  ie = pel(k)
+                  if (m%matno(ie) /= imat) cycle
+                  if (any(cnt(slot(1:m%nnode_e(ie), ie)) == 0)) need = .true.
+               end do
+               if (.not. need) cycle
+            else
+               do k = j, size(pel)
+                  ie = pel(k)
+                  if (m%matno(ie) /= imat) cycle
+                  if (.not. edges_shared(ip, ie, pel, imat)) exit
+               end do
+               if (k <= size(pel)) cycle
+            end if
             npt = 0
             h = 0.0_dp
             nterm = MAX_TERMS
             do k = j, size(pel)
                ie = pel(k)
                if (m%matno(ie) /= imat) cycle
-               npt = npt + sstart(ie + 1) - sstart(ie)
                nterm = min(nterm, recovery_terms(m%nnode_e(ie)))
-               h = max(h, maxval(abs(m%coord(:, m%lnods(1:m%nnode_e(ie), ie)) - spread(centre, 2, m%nnode_e(ie)))))
-               if (any(cnt(slot(1:m%nnode_e(ie), ie)) == 0)) need = .true.
-               if (interior) interior = edges_shared(ip, ie, pel, imat)
-            end do
-            if (pass == 1 .and. .not. interior) cycle
-            if (pass == 2 .and. .not. need) cycle
-            allocate (xy(2, npt), sg(4, npt))
-            npt = 0
-            do k = j, size(pel)
-               ie = pel(k)
-               if (m%matno(ie) /= imat) cycle
+               do n = 1, m%nnode_e(ie)
+                  h = max(h, abs(m%coord(1, m%lnods(n, ie)) - centre(1)), abs(m%coord(2, m%lnods(n, ie)) - centre(2)))
+               end do
                g0 = sstart(ie)
                g1 = sstart(ie + 1) - 1
-               xy(:, npt + 1:npt + g1 - g0 + 1) = sxy(:, g0:g1)
-               sg(:, npt + 1:npt + g1 - g0 + 1) = ssig(:, g0:g1)
+               wxy(:, npt + 1:npt + g1 - g0 + 1) = sxy(:, g0:g1)
+               wsg(:, npt + 1:npt + g1 - g0 + 1) = ssig(:, g0:g1)
                npt = npt + g1 - g0 + 1
             end do
             tries = [nterm, 3, 1]
             ok = .false.
             do t = 1, merge(1, 3, pass == 1)
                if (t > 1 .and. tries(t) >= nterm) cycle
-               call patch_fit(tries(t), npt, xy, sg, centre, h, coef, ok)
+               call patch_fit(tries(t), npt, wxy(:, 1:npt), wsg(:, 1:npt), centre, h, coef, ok)
                if (ok) exit
             end do
-            deallocate (xy, sg)
             if (.not. ok) cycle
+            npatch = npatch + 1
             do k = j, size(pel)
                ie = pel(k)
                if (m%matno(ie) /= imat) cycle
@@ -276,12 +289,16 @@ contains
          end do
       end function edges_shared
 
+      !> The patch's values at the nodes of element ie, each node once per
+      !! patch (npatch numbers the fitted patches).
       subroutine add_values(ie, nterm, coef, centre, h, pass)
          integer, intent(in) :: ie, nterm, pass
          real(dp), intent(in) :: coef(MAX_TERMS, 4), centre(2), h
          integer :: k, is
          do k = 1, m%nnode_e(ie)
             is = slot(k, ie)
+            if (seen(is) == npatch) cycle
+            seen(is) = npatch
             if (pass == 1) then
                acc(:, is) = acc(:, is) + patch_value(nterm, coef, centre, h, m%coord(:, m%lnods(k, ie)))
                cnt(is) = cnt(is) + 1
@@ -293,6 +310,36 @@ contains
       end subroutine add_values
    end subroutine recover_patch_stresses
 
+   !> The patches: the elements around every corner node, in CSR form
+   !! (elements pelem(pstart(ip) : pstart(ip + 1) - 1) hold node ip as a corner).
+   subroutine corner_patches(m, pstart, pelem)
+      type(model_t), intent(in) :: m
+      integer, allocatable, intent(out) :: pstart(:), pelem(:)
+      integer, allocatable :: cnt(:)
+      integer :: ie, k, ip
+      allocate (pstart(m%npoin + 1))
+      pstart = 0
+      do ie = 1, m%nelem
+         do k = 1, corner_count(m%nnode_e(ie))
+            pstart(m%lnods(k, ie) + 1) = pstart(m%lnods(k, ie) + 1) + 1
+         end do
+      end do
+      pstart(1) = 1
+      do ip = 1, m%npoin
+         pstart(ip + 1) = pstart(ip + 1) + pstart(ip)
+      end do
+      allocate (pelem(pstart(m%npoin + 1) - 1), cnt(m%npoin))
+      cnt = 0
+      do ie = 1, m%nelem
+         do k = 1, corner_count(m%nnode_e(ie))
+            ip = m%lnods(k, ie)
+            pelem(pstart(ip) + cnt(ip)) = ie
+            cnt(ip) = cnt(ip) + 1
+         end do
+      end do
+      deallocate (cnt)
+   end subroutine corner_patches
+
    !> The stresses the patches fit, element by element (sstart: first sample
    !! of each element): the Gauss-point stresses of the body fields, except
    !! for Q8 and Q9 with a rule other than 2 x 2, which are sampled at their
@@ -303,8 +350,9 @@ contains
       integer, allocatable, intent(out) :: sstart(:)
       real(dp), allocatable, intent(out) :: sxy(:, :), ssig(:, :)
       type(status_t), intent(inout) :: status
-      real(dp) :: elcod(2, MAX_NODE), eldis(2*MAX_NODE), xyg(2, max_gp), sg(4, max_gp), sn(4, MAX_NODE)
-      integer :: ie, nn, ngp, k, ierr, imat
+      type(rule_t) :: r2(MAX_NODE)
+      real(dp) :: elcod(2, MAX_NODE), eldis(2, MAX_NODE)
+      integer :: ie, nn, ngp, ierr, imat
       logical, allocatable :: own(:)
       allocate (sstart(m%nelem + 1), own(m%nelem))
       sstart(1) = 1
@@ -314,6 +362,7 @@ contains
          sstart(ie + 1) = sstart(ie) + merge(ngp, 4, own(ie))
       end do
       allocate (sxy(2, sstart(m%nelem + 1) - 1), ssig(4, sstart(m%nelem + 1) - 1))
+      if (.not. all(own)) call element_rules(m, 2, r2)
       do ie = 1, m%nelem
          if (own(ie)) then
             sxy(:, sstart(ie):sstart(ie + 1) - 1) = body%xygp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1)
@@ -323,19 +372,35 @@ contains
          nn = m%nnode_e(ie)
          imat = m%matno(ie)
          elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
-         do k = 1, nn
-            eldis(2*k - 1:2*k) = body%disp(:, m%lnods(k, ie))
-         end do
-         call element_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, 2, &
-                               eldis(1:2*nn), ngp, xyg, sg, sn(:, 1:nn), ierr)
-         if (ierr /= 0 .or. ngp /= 4) then
+         eldis(:, 1:nn) = body%disp(:, m%lnods(1:nn, ie))
+         ierr = -1
+         if (r2(nn)%ngp == 4) call point_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
+                                                  eldis(:, 1:nn), 4, r2(nn)%shp, r2(nn)%der, &
+                                                  sxy(:, sstart(ie):sstart(ie) + 3), ssig(:, sstart(ie):sstart(ie) + 3), ierr)
+         if (ierr /= 0) then
             call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (error estimate): its 2 x 2 Gauss points fail')
             return
          end if
-         sxy(:, sstart(ie):sstart(ie) + 3) = xyg(:, 1:4)
-         ssig(:, sstart(ie):sstart(ie) + 3) = sg(:, 1:4)
       end do
    end subroutine sample_stresses
+
+   !> The Gauss rule `ngaus` of every element type of the model.
+   subroutine element_rules(m, ngaus, rules)
+      type(model_t), intent(in) :: m
+      integer, intent(in) :: ngaus
+      type(rule_t), intent(out) :: rules(MAX_NODE)
+      real(dp) :: shp(MAX_NODE, max_gp), der(2, MAX_NODE, max_gp), w(max_gp)
+      integer :: nn, ngp
+      do nn = 1, MAX_NODE
+         if (recovery_terms(nn) == 0) cycle
+         if (.not. any(m%nnode_e(1:m%nelem) == nn)) cycle
+         call rule_shapes(nn, m%ntype, ngaus, ngp, shp(1:nn, :), der(:, 1:nn, :), w)
+         rules(nn)%ngp = ngp
+         rules(nn)%shp = shp(1:nn, 1:ngp)
+         rules(nn)%der = der(:, 1:nn, 1:ngp)
+         rules(nn)%w = w(1:ngp)
+      end do
+   end subroutine element_rules
 
    !> Resolution indicators of the contact pressure (see the module header):
    !! cf%resolution per pair, cf%zone_width, zone_pairs and zone_jump per

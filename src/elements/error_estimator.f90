@@ -29,11 +29,12 @@ module error_estimator
    use quadrature, only: max_gp, element_gauss_rule
    use shape_2d, only: shape_functions
    use kinematics_2d, only: jacobian_2d
+   use elastic_law, only: d_matrix
    implicit none
    private
 
    public :: MAX_TERMS, recovery_terms, fit_basis_xy, patch_fit, patch_value, stress_energy, &
-             gauss_volumes, element_error_energy
+             gauss_volumes, element_error_energy, rule_shapes, point_stresses
 
    integer, parameter :: MAX_TERMS = 9   !! most terms of a recovery polynomial (Q9)
 
@@ -53,15 +54,25 @@ contains
    end function recovery_terms
 
    !> Values of the first `nterm` terms of 1, x, y, xy, x^2, y^2, x^2 y,
-   !! x y^2, x^2 y^2 at (x, y); nterm = 1 (constant), 3, 4, 8 or 9.
+   !! x y^2, x^2 y^2 at (x, y); nterm = 1 (constant), 3, 4, 8 or 9 (the
+   !! entries beyond nterm are not set).
    pure subroutine fit_basis_xy(nterm, x, y, phi)
       integer, intent(in) :: nterm           !! number of terms
       real(dp), intent(in) :: x, y           !! local coordinates
-      real(dp), intent(out) :: phi(MAX_TERMS) !! basis values; entries beyond nterm are zero
-      real(dp) :: all(MAX_TERMS)
-      all = [1.0_dp, x, y, x*y, x*x, y*y, x*x*y, x*y*y, x*x*y*y]
-      phi = 0.0_dp
-      phi(1:nterm) = all(1:nterm)
+      real(dp), intent(out) :: phi(MAX_TERMS) !! basis values; entries beyond nterm are undefined
+      phi(1) = 1.0_dp
+      if (nterm < 3) return
+      phi(2) = x
+      phi(3) = y
+      if (nterm < 4) return
+      phi(4) = x*y
+      if (nterm < 8) return
+      phi(5) = x*x
+      phi(6) = y*y
+      phi(7) = x*x*y
+      phi(8) = x*y*y
+      if (nterm < 9) return
+      phi(9) = x*x*y*y
    end subroutine fit_basis_xy
 
    !> Least-squares fit of the `nterm`-term polynomial to the stresses
@@ -89,9 +100,14 @@ contains
       do ip = 1, npt
          call fit_basis_xy(nterm, (xy(1, ip) - centre(1))/h, (xy(2, ip) - centre(2))/h, phi)
          do i = 1, nterm
-            a(:, i) = a(:, i) + phi(1:nterm)*phi(i)
+            do k = i, nterm
+               a(k, i) = a(k, i) + phi(k)*phi(i)
+            end do
             b(i, :) = b(i, :) + phi(i)*sig(:, ip)
          end do
+      end do
+      do i = 1, nterm
+         a(i, i + 1:nterm) = a(i + 1:nterm, i)
       end do
       amax = maxval(abs(a))
       ! Gaussian elimination with partial pivoting
@@ -197,36 +213,112 @@ contains
       end do
    end subroutine gauss_volumes
 
+   !> Shape functions, their natural derivatives and the weights at the
+   !! points of an element's Gauss rule (`quadrature::element_gauss_rule`):
+   !! the same for every element of a type, so computed once per type.
+   pure subroutine rule_shapes(nnode, ntype, ngaus, ngp, shape_gp, deriv_gp, weigp)
+      integer, intent(in) :: nnode                      !! nodes per element
+      integer, intent(in) :: ntype                      !! analysis type
+      integer, intent(in) :: ngaus                      !! Gauss rule, 0 = default
+      integer, intent(out) :: ngp                       !! points (0: no such rule or element)
+      real(dp), intent(out) :: shape_gp(nnode, max_gp)  !! shape functions at the points
+      real(dp), intent(out) :: deriv_gp(2, nnode, max_gp) !! dN/ds, dN/dt at the points
+      real(dp), intent(out) :: weigp(max_gp)            !! weights
+      real(dp) :: posgp(2, max_gp)
+      integer :: ig
+      shape_gp = 0.0_dp
+      deriv_gp = 0.0_dp
+      call element_gauss_rule(nnode, ntype, ngaus, posgp, weigp, ngp)
+      if (recovery_terms(nnode) == 0) ngp = 0
+      do ig = 1, ngp
+         call shape_functions(nnode, posgp(1, ig), posgp(2, ig), shape_gp(:, ig), deriv_gp(:, :, ig))
+      end do
+   end subroutine rule_shapes
+
+   !> Stresses sigma = D B u (xx, yy, xy, zz) and positions at given points
+   !! of one element (shape functions and natural derivatives from
+   !! `rule_shapes`), as `solid2d::element_stresses` gives them at its Gauss
+   !! points: sig_zz = nu (sig_xx + sig_yy) in plane strain, the hoop stress
+   !! from u_r / r in axisymmetry.  ierr: 0, or the first point with det J <= 0
+   !! or (axisymmetric) r <= 0.
+   pure subroutine point_stresses(ntype, nnode, elcod, young, poiss, eldis, npt, shape_pt, deriv_pt, xy, sig, ierr)
+      integer, intent(in) :: ntype                      !! 1 plane stress, 2 plane strain, 3 axisymmetric
+      integer, intent(in) :: nnode                      !! nodes per element
+      real(dp), intent(in) :: elcod(2, nnode)           !! nodal coordinates [length]
+      real(dp), intent(in) :: young                     !! Young's modulus [stress]
+      real(dp), intent(in) :: poiss                     !! Poisson's ratio [-]
+      real(dp), intent(in) :: eldis(2, nnode)           !! nodal displacements [length]
+      integer, intent(in) :: npt                        !! points
+      real(dp), intent(in) :: shape_pt(nnode, npt)      !! shape functions at the points
+      real(dp), intent(in) :: deriv_pt(2, nnode, npt)   !! natural derivatives at the points
+      real(dp), intent(out) :: xy(2, npt)               !! positions of the points [length]
+      real(dp), intent(out) :: sig(4, npt)              !! stresses there [stress]
+      integer, intent(out) :: ierr                      !! status
+      real(dp) :: dmatx(4, 4), cartd(2, nnode), djacb, gradu(2, 2), eps(4)
+      logical :: ok
+      integer :: ip
+      ierr = 0
+      xy = 0.0_dp
+      sig = 0.0_dp
+      call d_matrix(ntype, young, poiss, dmatx)
+      do ip = 1, npt
+         xy(:, ip) = matmul(elcod, shape_pt(:, ip))
+         call jacobian_2d(nnode, elcod, deriv_pt(:, :, ip), cartd, djacb, ok)
+         if (.not. ok .or. (ntype == 3 .and. xy(1, ip) <= 0.0_dp)) then
+            ierr = ip
+            return
+         end if
+         gradu = matmul(eldis, transpose(cartd))          ! gradu(i, j) = d u_i / d x_j
+         eps = [gradu(1, 1), gradu(2, 2), gradu(1, 2) + gradu(2, 1), 0.0_dp]
+         if (ntype == 3) eps(4) = dot_product(eldis(1, :), shape_pt(:, ip))/xy(1, ip)
+         sig(:, ip) = matmul(dmatx, eps)
+         if (ntype == 2) sig(4, ip) = poiss*(sig(1, ip) + sig(2, ip))
+      end do
+   end subroutine point_stresses
+
    !> Energy-norm integrals of one element: err2 = ||sigma* - sigma_h||_E^2
    !! with sigma* interpolated from its nodal values by the element's shape
    !! functions, and ene2 = ||sigma_h||_E^2 (= ||u_h||_E^2 on the element),
-   !! both by the element's Gauss rule, at whose points sigma_h is given.
-   pure subroutine element_error_energy(ntype, nnode, elcod, young, poiss, thick, ngaus, sig_star, &
-                                        sig_gp, err2, ene2, ierr)
+   !! both by the element's Gauss rule (shape functions, derivatives and
+   !! weights from `rule_shapes`), at whose points sigma_h is given.
+   pure subroutine element_error_energy(ntype, nnode, elcod, young, poiss, thick, ngp, shape_gp, deriv_gp, &
+                                        weigp, sig_star, sig_gp, err2, ene2, ierr)
       integer, intent(in) :: ntype                 !! 1 plane stress, 2 plane strain, 3 axisymmetric
       integer, intent(in) :: nnode                 !! nodes per element
       real(dp), intent(in) :: elcod(2, nnode)      !! nodal coordinates [length]
       real(dp), intent(in) :: young                !! Young's modulus [stress]
       real(dp), intent(in) :: poiss                !! Poisson's ratio [-]
       real(dp), intent(in) :: thick                !! thickness, plane problems [length]
-      integer, intent(in) :: ngaus                 !! Gauss rule, 0 = default
+      integer, intent(in) :: ngp                   !! points of the rule
+      real(dp), intent(in) :: shape_gp(nnode, ngp) !! shape functions at them
+      real(dp), intent(in) :: deriv_gp(2, nnode, ngp) !! natural derivatives at them
+      real(dp), intent(in) :: weigp(ngp)           !! weights
       real(dp), intent(in) :: sig_star(4, nnode)   !! recovered stresses at the nodes [stress]
-      real(dp), intent(in) :: sig_gp(:, :)         !! (4, ngp) FE stresses at the Gauss points [stress]
+      real(dp), intent(in) :: sig_gp(4, ngp)       !! FE stresses at the Gauss points [stress]
       real(dp), intent(out) :: err2                !! ||sigma* - sigma_h||_E^2 [energy]
       real(dp), intent(out) :: ene2                !! ||sigma_h||_E^2 [energy]
-      integer, intent(out) :: ierr                 !! see gauss_volumes; -1 also for a sig_gp of the wrong size
-      real(dp) :: shape_gp(nnode, max_gp), dvol(max_gp), s(4)
-      integer :: ngp, ig
+      integer, intent(out) :: ierr                 !! 0, or the first point with det J <= 0
+      real(dp) :: s(4), xjacm(2, 2), djacb, dvol
+      integer :: ig
 
       err2 = 0.0_dp
       ene2 = 0.0_dp
-      call gauss_volumes(ntype, nnode, elcod, thick, ngaus, ngp, shape_gp, dvol, ierr)
-      if (ierr == 0 .and. size(sig_gp, 2) /= ngp) ierr = -1
-      if (ierr /= 0) return
+      ierr = 0
       do ig = 1, ngp
+         xjacm = matmul(deriv_gp(:, :, ig), transpose(elcod))
+         djacb = xjacm(1, 1)*xjacm(2, 2) - xjacm(1, 2)*xjacm(2, 1)
+         if (.not. djacb > 0.0_dp) then
+            ierr = ig
+            return
+         end if
+         if (ntype == 3) then
+            dvol = weigp(ig)*djacb*two_pi*dot_product(elcod(1, :), shape_gp(:, ig))
+         else
+            dvol = weigp(ig)*djacb*thick
+         end if
          s = matmul(sig_star, shape_gp(:, ig)) - sig_gp(:, ig)
-         err2 = err2 + stress_energy(ntype, young, poiss, s)*dvol(ig)
-         ene2 = ene2 + stress_energy(ntype, young, poiss, sig_gp(:, ig))*dvol(ig)
+         err2 = err2 + stress_energy(ntype, young, poiss, s)*dvol
+         ene2 = ene2 + stress_energy(ntype, young, poiss, sig_gp(:, ig))*dvol
       end do
    end subroutine element_error_energy
 
