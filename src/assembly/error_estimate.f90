@@ -34,7 +34,7 @@
 !! neighbours, relative to the interface's peak pressure: ~ |dp/ds| s / p_max
 !! for a pair spacing s, and at the edge of the contact zone the pressure
 !! of the last closed pair (the edge lies inside one spacing).  The contact
-!! zone of an interface is the range of its closed pairs; its width 2a runs
+!! zone of an interface is the range of its closed pairs; its width (2a; a in a half model) runs
 !! to the midpoints between the outermost closed pairs and their open
 !! neighbours (to the outermost pair itself where the zone reaches the end of
 !! the interface).

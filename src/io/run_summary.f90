@@ -387,7 +387,7 @@ contains
    end subroutine write_run_summary
 
    !> The a posteriori error estimate of the last step in one line (docs/history.md):
-   !! " estimated discretization error 3.14 % (energy norm); contact zone 2a = 4.10 mm
+   !! " estimated discretization error 3.14 % (energy norm); contact zone 4.100E+00 mm wide
    !! resolved by 9 pairs, largest pressure jump between neighbouring pairs 12.0 % of the peak"
    !! (one zone per interface with pairs); '' when the body fields hold no estimate.
    pure function error_estimate_line(body, cf, length_unit) result(line)
@@ -415,7 +415,7 @@ contains
             cycle
          end if
          write (b, '(es10.3)') cf%zone_width(k)
-         line = line//' contact zone 2a = '//trim(adjustl(b))//' '//length_unit//' resolved by '
+         line = line//' contact zone '//trim(adjustl(b))//' '//length_unit//' wide resolved by '
          write (b, '(i0)') cf%zone_pairs(k)
          line = line//trim(b)//merge(' pairs', ' pair ', cf%zone_pairs(k) /= 1)
          write (b, '(f0.1)') 100.0_dp*cf%zone_jump(k)

@@ -121,7 +121,7 @@ module records
       !! largest jump of the pressure to its neighbouring pairs on the interface, relative to the
       !! interface's peak pressure; per interface the contact zone's width and its closed pairs.
       real(dp), allocatable :: resolution(:)            !! (npair) pressure jump / peak pressure [-]
-      real(dp), allocatable :: zone_width(:)            !! (niface) width 2a of the contact zone [length]
+      real(dp), allocatable :: zone_width(:)            !! (niface) width of the contact zone in the model [length]
       integer, allocatable :: zone_pairs(:)             !! (niface) closed pairs in it
       real(dp), allocatable :: zone_jump(:)             !! (niface) largest resolution(:) of its pairs [-]
    end type contact_fields_t
