@@ -9,14 +9,17 @@
 !! own, since the stresses jump there) fit one polynomial to their sampled
 !! stresses (kernels in `error_estimator`): the Gauss-point stresses of T3
 !! and Q4, and for Q8 and Q9 the stresses at their 2 x 2 Gauss points, the
-!! superconvergent points of the quadratic elements (ZZ Part 1; sampling at
-!! the 3 x 3 points of their stiffness rule underestimates the error by 15 -
-!! 30 %); every patch gives its polynomial's
-!! value at all nodes of its elements, and the values a node receives (one
-!! from each patch that holds it) are averaged (per material).  A patch whose points do not determine the
-!! element's polynomial (a corner patch of one T3, a strip one element thick)
-!! gives values only to the nodes no full patch reached, with the linear and
-!! then the constant polynomial.  sigma* is interpolated in each element by its
+!! superconvergent points of the quadratic elements (ZZ Part 1; sampled at
+!! the 3 x 3 points of their stiffness rule, the error of Lame's cylinder is
+!! underestimated by 15 - 30 %).  Every patch gives its polynomial's value at
+!! all nodes of its elements, and the values a node receives (one from each
+!! patch that holds it) are averaged (per material).  Interior patches come
+!! first: a patch on the boundary fits from one side and, on a curved
+!! boundary, from points near one line.  A node that no interior patch
+!! reaches takes the patches around it, boundary ones too, with the
+!! element's polynomial or, where their points do not determine it (a corner
+!! patch of one T3, a strip one element thick), the linear and then the
+!! constant one.  sigma* is interpolated in each element by its
 !! shape functions, and
 !!
 !!     ||e*||_E,e^2 = int_e (sigma* - sigma_h)^T D^-1 (sigma* - sigma_h) dV,
@@ -119,8 +122,8 @@ contains
       end if
    end subroutine estimate_error
 
-   !> Recovered stresses sigma* at the nodes of every element, (4, MAX_NODE,
-   !! nelem), by superconvergent patch recovery from the Gauss-point stresses
+   !> Recovered stresses sigma* at the nodes of every element, (4, nnode of
+   !! the largest element, nelem), by superconvergent patch recovery from the Gauss-point stresses
    !! of the body fields (see the module header).
    subroutine recover_patch_stresses(m, body, sstar, status)
       type(model_t), intent(in) :: m
