@@ -19,9 +19,11 @@ module body_fields
    use quadrature, only: max_gp
    use solid2d, only: element_stresses
    use assembly, only: coupling_t, restrained_forces, element_error
+   use error_estimate, only: estimate_error   ! re-exported: the estimate of the fields recovered here
    implicit none
    private
    public :: recover_stresses, update_reactions, number_bodies, body_imbalance, zero_fields, stiffness_range
+   public :: estimate_error
 
 contains
 
@@ -37,6 +39,7 @@ contains
       integer :: ie, nn, ngp, ierr, k, imat
 
       if (.not. allocated(body%gp_start)) call lay_out_gauss_points(m, body)
+      body%estimated = .false.   ! (until estimate_error has seen these stresses)
       allocate (cnt(m%npoin))
       cnt = 0.0_dp
       body%sig_nd = 0.0_dp
@@ -81,6 +84,12 @@ contains
       body%restrained = .false.
       body%sig_nd = 0.0_dp
       body%sig_gp = 0.0_dp
+      if (.not. allocated(body%error_indicator)) allocate (body%error_indicator(m%nelem))
+      body%error_indicator = 0.0_dp
+      body%estimated_error = 0.0_dp
+      body%error_norm = 0.0_dp
+      body%energy_norm = 0.0_dp
+      body%estimated = .false.
    end subroutine zero_fields
 
    !> The bodies' stiffness K_AB in the range a factorization works in.  A

@@ -44,7 +44,7 @@ module incremental
    use assembly, only: assemble_bodies, assemble_load_cases, load_increment
    use contact_assembly, only: pair_links, spring_nodal_forces
    use body_fields, only: recover_stresses, update_reactions, number_bodies, body_imbalance, &
-                          stiffness_range, zero_fields
+                          stiffness_range, zero_fields, estimate_error
    use contact_types, only: UPDATE_RETURN
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, commit_increment, &
                                 law_drift, augment_multipliers, MAX_SWITCH, tangential_drift
@@ -634,6 +634,7 @@ contains
       call note_doubts(res%doubts, srec, stderr)
       call res%append_history(srec)
       if (an%has_contact) call build_contact_fields(m%contact, res%contact, res%fields)
+      if (srec%full .and. status%ok()) call estimate_error(m, res%body_fields_t, res%fields, status)
 
       if (srec%written) call out%rf%write_increment(srec, res%body_fields_t, status, res%fields)
       if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) &

@@ -24,6 +24,8 @@
 !!         stress_nodal  (npoin, 4)  xx, yy, xy, zz (hoop in axisymmetry)
 !!         stress_gauss  (ngp, 4)
 !!         reaction      (npoin, 2)  zero at free dofs
+!!         error_indicator (nelem)   relative energy-norm error of each element (attribute
+!!                       estimated_error: that of the model), see docs/results-format.md
 !!         contact/      the contact fields record (contact models)
 !!
 !! Life cycle, layout-level calls only (the caller holds no HDF5 handle):
@@ -268,7 +270,7 @@ contains
 
       ! the body fields (displacement twice, stresses, reactions) and the contact fields
       nbytes = 8_i8*(size(body%disp, kind=i8)*5/2 + size(body%sig_nd, kind=i8) + size(body%sig_gp, kind=i8) &
-                     + size(body%react, kind=i8)) + 512_i8*this%npair
+                     + size(body%react, kind=i8) + size(body%gp_start, kind=i8)) + 512_i8*this%npair
       call probe_room(this, nbytes, err)
       if (err /= 0) then
          call status%set(STAT_IO, 'no room on the disk for the results of increment '//itoa(step%step)// &
@@ -286,6 +288,11 @@ contains
       call write_real2(gid, 'stress_nodal', body%sig_nd, err)
       call write_real2(gid, 'stress_gauss', body%sig_gp, err)
       call write_real2(gid, 'reaction', body%react, err)
+      if (allocated(body%error_indicator)) then
+         ! the a posteriori error estimate (module error_estimate): per element and of the model
+         call write_real1(gid, 'error_indicator', body%error_indicator, err)
+         call attr_real0(gid, 'estimated_error', body%estimated_error, err)
+      end if
       if (step%contact) call attr_real0(gid, 'residual', step%residual, err)
       if (step%contact) call attr_real0(gid, 'law_drift', step%drift, err)
       if (step%contact) call attr_real0(gid, 'law_drift_tangential', step%drift_t, err)
@@ -688,6 +695,13 @@ contains
       call write_real1(cid, 'stiffness_normal', cf%stiffness_normal, err)
       call write_real1(cid, 'stiffness_tangential', cf%stiffness_tangential, err)
       if (allocated(cf%switches)) call write_int1(cid, 'switches', cf%switches, err)
+      if (allocated(cf%resolution)) then
+         ! how well the pairs resolve the pressure (module error_estimate); the zone of each
+         ! interface as attributes (the datasets are per pair)
+         call write_real1(cid, 'resolution', cf%resolution, err)
+         call attr_real1(cid, 'zone_width', cf%zone_width, err)
+         call attr_int1(cid, 'zone_pairs', cf%zone_pairs, err)
+      end if
       call h5gclose_f(cid, e)
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the contact results')
    end subroutine write_contact_fields
@@ -798,6 +812,27 @@ contains
       end if
       call h5sclose_f(sid, e)
    end subroutine attr_int
+
+   subroutine attr_int1(loc, name, v, err)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: v(:)
+      integer, intent(inout) :: err
+      integer(hid_t) :: sid, aid
+      integer(hsize_t) :: dims(1)
+      integer :: e
+      dims = [size(v, kind=hsize_t)]
+      call h5screate_simple_f(1, dims, sid, e)
+      call keep(e, err)
+      call h5acreate_f(loc, name, H5T_NATIVE_INTEGER, sid, aid, e)
+      call keep(e, err)
+      if (e >= 0) then
+         call h5awrite_f(aid, H5T_NATIVE_INTEGER, v, dims, e)
+         call keep(e, err)
+         call h5aclose_f(aid, e)
+      end if
+      call h5sclose_f(sid, e)
+   end subroutine attr_int1
 
    subroutine attr_real0(loc, name, v, err)
       integer(hid_t), intent(in) :: loc

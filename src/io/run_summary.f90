@@ -82,6 +82,7 @@ module run_summary
       integer :: beyond_pair = 0                    !! the one farthest beyond (largest p_A / p*)
       real(dp) :: beyond_pa = 0.0_dp, beyond_pstar = 0.0_dp  !! its p_A and p*
       character(len=:), allocatable :: length_unit, stress_unit, force_unit
+      character(len=:), allocatable :: estimate     !! the error estimate's line ('' if none), error_estimate_line
    end type run_summary_t
 
 contains
@@ -127,6 +128,7 @@ contains
       end if
       call stage_table(m, solutions, drift, s)
       call unit_names(m, s)
+      s%estimate = error_estimate_line(body, cf, s%length_unit)
       np = 0
       if (allocated(cf%pressure) .and. allocated(m%contact%pairs)) np = min(size(cf%pressure), size(m%contact%pairs))
       s%contact = np > 0
@@ -410,9 +412,48 @@ contains
             s%beyond_pa, ' > p*', s%beyond_pstar, s%stress_unit, ' (u_res taken as max(u_res, 0))'
          write (u, '(a,es12.4,a,i0,a)') '  worst law drift     ', s%worst_drift, ' (increment ', s%worst_drift_step, ')'
       end if
+      if (len(s%estimate) > 0) write (u, '(a)') s%estimate
       write (b, '(f12.2)') seconds
       write (u, '(a,i0,a,i0,a)') ' ', s%solutions_total, ' solutions in ', s%nstep, ' increments, '// &
          trim(adjustl(b))//' s'
       write (u, '(a)') ' '//repeat('=', 78)
    end subroutine write_run_summary
+
+   !> The a posteriori error estimate of the last step in one line (docs/history.md):
+   !! " estimated discretization error 3.14 % (energy norm); contact zone 4.100E+00 mm wide
+   !! resolved by 9 pairs, largest pressure jump between neighbouring pairs 12.0 % of the peak"
+   !! (one zone per interface with pairs); '' when the body fields hold no estimate.
+   pure function error_estimate_line(body, cf, length_unit) result(line)
+      type(body_fields_t), intent(in) :: body       !! body fields of the last step
+      type(contact_fields_t), intent(in) :: cf      !! contact fields of the last step
+      character(len=*), intent(in) :: length_unit   !! unit of length of the model
+      character(len=:), allocatable :: line
+      character(len=32) :: b
+      integer :: k
+      line = ''
+      if (.not. body%estimated) return
+      write (b, '(f0.2)') 100.0_dp*body%estimated_error
+      if (b(1:1) == '.') b = '0'//trim(b)
+      line = ' estimated discretization error '//trim(b)//' % (energy norm)'
+      if (.not. allocated(cf%zone_width)) return
+      do k = 1, size(cf%zone_width)
+         if (size(cf%zone_width) > 1) then
+            write (b, '(i0)') k
+            line = line//'; interface '//trim(b)//':'
+         else
+            line = line//';'
+         end if
+         if (cf%zone_pairs(k) == 0) then
+            line = line//' no pair closed'
+            cycle
+         end if
+         write (b, '(es10.3)') cf%zone_width(k)
+         line = line//' contact zone '//trim(adjustl(b))//' '//length_unit//' wide resolved by '
+         write (b, '(i0)') cf%zone_pairs(k)
+         line = line//trim(b)//merge(' pairs', ' pair ', cf%zone_pairs(k) /= 1)
+         write (b, '(f0.1)') 100.0_dp*cf%zone_jump(k)
+         if (b(1:1) == '.') b = '0'//trim(b)
+         line = trim(line)//', largest pressure jump between neighbouring pairs '//trim(b)//' % of the peak'
+      end do
+   end function error_estimate_line
 end module run_summary

@@ -8,7 +8,9 @@
 !! stresses as one 4-component attribute (xx, yy, xy, zz: the whole
 !! `stress_nodal` dataset, type Matrix, so that both ParaView readers, the
 !! legacy XDMF reader and the Xdmf3 readers, keep it; hyperslab columns are
-!! dropped by the Xdmf3 readers).  A mesh of one element type uses that
+!! dropped by the Xdmf3 readers), and the error estimate of its increment as
+!! a cell attribute `error_indicator` (one value per element, in element
+!! order, which is the order of the cells).  A mesh of one element type uses that
 !! type's topology (Triangle, Quadrilateral, Quadrilateral_8,
 !! Quadrilateral_9); a mixed mesh uses the Mixed topology of
 !! `/mesh/cells_mixed`.  A model with contact pairs has, per increment, a
@@ -38,9 +40,9 @@ module xdmf_writer
    !> XDMF cell codes in a Mixed topology array.
    integer, parameter :: XDMF_CELL_CODE(4) = [4, 5, 37, 35]
    !> Datasets of /increments/NNNNN/contact shown on the contact grid (same names).
-   character(len=17), parameter :: CONTACT_ATTRIBUTES(10) = [character(len=17) :: 'pressure', 'shear', &
+   character(len=17), parameter :: CONTACT_ATTRIBUTES(11) = [character(len=17) :: 'pressure', 'shear', &
       'closure', 'slip', 'slip_irreversible', 'force_normal', 'force_tangential', 'friction', &
-      'normal_state', 'tangential_state']
+      'resolution', 'normal_state', 'tangential_state']
    !> The integer ones among them (state codes).
    integer, parameter :: NINT_ATTRIBUTES = 2
    character(len=*), parameter :: nl = achar(10)
@@ -100,10 +102,10 @@ contains
             write (u, '(a)', iostat=ierr) '      <Grid Name="increment '//trim(grp)// &
                '" GridType="Collection" CollectionType="Spatial">'//nl// &
                '        <Time Value="'//itoa(incs(i))//'" />'//nl// &
-               body_grid(h5, grp, npoin, topo, lambda(:, i), '', 'bodies')//nl// &
+               body_grid(h5, grp, npoin, sum(ncells), topo, lambda(:, i), '', 'bodies')//nl// &
                contact_grid(h5, grp, np, pairs, lambda(:, i))//nl//'      </Grid>'
          else
-            write (u, '(a)', iostat=ierr) body_grid(h5, grp, npoin, topo, lambda(:, i), &
+            write (u, '(a)', iostat=ierr) body_grid(h5, grp, npoin, sum(ncells), topo, lambda(:, i), &
                '        <Time Value="'//itoa(incs(i))//'" />'//nl, 'increment '//trim(grp))
          end if
       end do
@@ -152,10 +154,11 @@ contains
    end function body_topology
 
    !> The uniform grid of the bodies in one increment.
-   function body_grid(h5, grp, npoin, topo, lambda, time, name) result(s)
+   function body_grid(h5, grp, npoin, nelem, topo, lambda, time, name) result(s)
       character(len=*), intent(in) :: h5            !! name of the HDF5 file
       character(len=*), intent(in) :: grp           !! the increment's group name (NNNNN)
       integer, intent(in) :: npoin                  !! nodes
+      integer, intent(in) :: nelem                  !! elements (cells)
       character(len=*), intent(in) :: topo          !! the Topology element
       real(dp), intent(in) :: lambda(:)             !! load factors of the increment
       character(len=*), intent(in) :: time          !! the Time element ('' inside a spatial collection)
@@ -169,6 +172,8 @@ contains
                                                        itoa(npoin)//' 3', .false.))//nl// &
           attribute('stress', 'Matrix', hdf_item(h5, '/increments/'//trim(grp)//'/stress_nodal', &
                                                  itoa(npoin)//' 4', .false.))//nl// &
+          attribute('error_indicator', 'Scalar', hdf_item(h5, '/increments/'//trim(grp)//'/error_indicator', &
+                                                          itoa(nelem), .false.), 'Cell')//nl// &
           load_factor_attribute(lambda)//nl//'      </Grid>'
    end function body_grid
 
@@ -228,13 +233,16 @@ contains
       end if
    end function hdf_item
 
-   !> A node-centred Attribute element around one DataItem.
-   pure function attribute(name, kind, item) result(s)
+   !> A node-centred (or `center`-centred) Attribute element around one DataItem.
+   pure function attribute(name, kind, item, center) result(s)
       character(len=*), intent(in) :: name          !! the attribute's name
       character(len=*), intent(in) :: kind          !! Scalar, Vector or Matrix
       character(len=*), intent(in) :: item          !! its DataItem
-      character(len=:), allocatable :: s
-      s = '        <Attribute Name="'//name//'" AttributeType="'//kind//'" Center="Node">'//nl// &
+      character(len=*), intent(in), optional :: center  !! Cell (default Node)
+      character(len=:), allocatable :: s, c
+      c = 'Node'
+      if (present(center)) c = center
+      s = '        <Attribute Name="'//name//'" AttributeType="'//kind//'" Center="'//c//'">'//nl// &
           '          '//item//nl//'        </Attribute>'
    end function attribute
 

@@ -95,6 +95,14 @@ module records
       real(dp), allocatable :: xygp(:, :)        !! (2, ngp) Gauss-point coordinates
       integer, allocatable :: gp_start(:)        !! (nelem+1) first Gauss point of each element
       logical, allocatable :: restrained(:, :)   !! (2, npoin) restrained dofs (reactions listed)
+      !> A posteriori error estimate (Zienkiewicz-Zhu, module error_estimate) of the step's stresses:
+      !! eta_e = ||sigma* - sigma_h||_E,e / sqrt(||u_h||_E^2 + ||e*||_E^2) per element (norms of the whole
+      !! model in the denominator), so that sqrt(sum eta_e^2) = estimated_error.
+      real(dp), allocatable :: error_indicator(:)  !! (nelem) eta_e, fraction [-]
+      real(dp) :: estimated_error = 0.0_dp       !! eta = ||e*||_E / sqrt(||u_h||_E^2 + ||e*||_E^2), fraction [-]
+      real(dp) :: error_norm = 0.0_dp            !! ||e*||_E = ||sigma* - sigma_h||_E, sqrt of energy
+      real(dp) :: energy_norm = 0.0_dp           !! ||u_h||_E, sqrt of energy
+      logical :: estimated = .false.             !! the estimate belongs to the current stresses
    end type body_fields_t
 
    !> Per-pair contact quantities after a step (results group `contact`).
@@ -114,6 +122,13 @@ module records
       real(dp), allocatable :: stiffness_normal(:)      !! K_n used
       real(dp), allocatable :: stiffness_tangential(:)  !! K_T used
       integer, allocatable :: switches(:)               !! mode changes of the pair in the step
+      !> How well the interface resolves the contact pressure (module error_estimate): per pair the
+      !! largest jump of the pressure to its neighbouring pairs on the interface, relative to the
+      !! interface's peak pressure; per interface the contact zone's width and its closed pairs.
+      real(dp), allocatable :: resolution(:)            !! (npair) pressure jump / peak pressure [-]
+      real(dp), allocatable :: zone_width(:)            !! (niface) width of the contact zone in the model [length]
+      integer, allocatable :: zone_pairs(:)             !! (niface) closed pairs in it
+      real(dp), allocatable :: zone_jump(:)             !! (niface) largest resolution(:) of its pairs [-]
    end type contact_fields_t
 
    !> What a run uses, for the header of the listing and the terminal and the

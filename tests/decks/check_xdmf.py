@@ -7,7 +7,8 @@ Well-formed XML (xml.etree); a temporal collection with one uniform grid per
 finished increment (root attribute increments_completed of the HDF5 file);
 every HDF DataItem names a dataset that exists, with the declared dimensions;
 every node attribute is a plain HDF DataItem (no hyperslab or function, which
-the Xdmf3 readers drop) of one row per point; topologies count the elements of
+the Xdmf3 readers drop) of one row per point, the cell attribute error_indicator
+one of one row per element; topologies count the elements of
 the mesh and point at existing nodes (0-based); each grid carries the
 increment's load factors as a grid-centred attribute; a model with contact has
 per increment a spatial collection of the bodies and a Polyvertex grid of the
@@ -68,7 +69,7 @@ def check_node_attributes(g, base, npoints):
     function: the Xdmf3 readers drop them) of one row per point."""
     names = []
     for att in g.findall("Attribute"):
-        if att.get("Center") == "Grid":
+        if att.get("Center") in ("Grid", "Cell"):
             continue
         item = att.find("DataItem")
         if item.get("ItemType") not in (None, "Uniform") or item.get("Format") != "HDF":
@@ -76,6 +77,22 @@ def check_node_attributes(g, base, npoints):
         ds = hdf_dataset(item, base)
         if ds.shape[0] != npoints:
             fail(f"attribute {att.get('Name')} is not one value per point")
+        names.append(att.get("Name"))
+    return names
+
+
+def check_cell_attributes(g, base, nelem):
+    """Every cell-centred attribute: a plain HDF DataItem of one row per element."""
+    names = []
+    for att in g.findall("Attribute"):
+        if att.get("Center") != "Cell":
+            continue
+        item = att.find("DataItem")
+        if item.get("ItemType") not in (None, "Uniform") or item.get("Format") != "HDF":
+            fail(f"attribute {att.get('Name')} is not a plain HDF DataItem")
+        ds = hdf_dataset(item, base)
+        if ds.shape[0] != nelem:
+            fail(f"attribute {att.get('Name')} is not one value per element")
         names.append(att.get("Name"))
     return names
 
@@ -109,6 +126,9 @@ def check_bodies(g, base, npoin, nelem, step):
     names = check_node_attributes(g, base, npoin)
     if sorted(names) != ["displacement", "stress"]:
         fail(f"the bodies' attributes are {names}, expected displacement and stress")
+    cells = check_cell_attributes(g, base, nelem)
+    if cells != ["error_indicator"]:
+        fail(f"the bodies' cell attributes are {cells}, expected error_indicator")
     disp = hdf_dataset(g.find("Attribute[@Name='displacement']/DataItem"), base)
     u = step.field("displacement")
     if disp.shape != (npoin, 3) or not np.array_equal(disp[:, :2], u) or np.any(disp[:, 2] != 0.0):

@@ -14,6 +14,8 @@ names: scripts and tests read results through this module.
     for s in r.steps:                # the increment groups, in the order of their numbers
         s.number, s.load_factor, s.attrs["iterations"]
         s.field("displacement")      # (npoin, 2); stress_nodal, stress_gauss, reaction
+        s.error_indicator, s.estimated_error   # (nelem) per element, and the model's: fractions
+        s.contact_zone                # {"zone_width": (niface), "zone_pairs": (niface)} or {}
         s.contact("pressure")        # (npair); closure, slip, normal_state, ...
     r.step(12)                       # the group of increment 12 (KeyError if not kept)
     r.last                           # the last kept increment
@@ -100,11 +102,39 @@ class Step:
             return g[name][()]
 
     def field(self, name):
-        """A nodal or Gauss-point field: displacement, stress_nodal, stress_gauss, reaction."""
+        """A nodal, Gauss-point or element field: displacement, stress_nodal, stress_gauss, reaction,
+        error_indicator."""
         return self._read(None, name)
 
+    @property
+    def error_indicator(self):
+        """The a posteriori error estimate per element (nelem, in element order): the element's
+        energy-norm error relative to the model's norm, sqrt(sum of squares) = estimated_error.
+        None in a file written before the estimate existed."""
+        try:
+            return self._read(None, "error_indicator")
+        except KeyError:
+            return None
+
+    @property
+    def estimated_error(self):
+        """The model's relative energy-norm error estimate (a fraction; None if absent)."""
+        v = self.attrs.get("estimated_error")
+        return None if v is None else float(np.atleast_1d(v)[0])
+
+    @property
+    def contact_zone(self):
+        """The contact zone of every interface (attributes of the increment's contact group):
+        zone_width (2a) and zone_pairs (closed pairs); {} without them."""
+        with h5py.File(self._result.path, "r") as f:
+            g = f["increments"][self.name]
+            if "contact" not in g or "zone_width" not in g["contact"].attrs:
+                return {}
+            a = g["contact"].attrs
+            return {"zone_width": np.atleast_1d(a["zone_width"]), "zone_pairs": np.atleast_1d(a["zone_pairs"])}
+
     def contact(self, name):
-        """A contact quantity per pair: pressure, shear, force_normal, closure, slip, ..."""
+        """A contact quantity per pair: pressure, shear, force_normal, closure, slip, resolution, ..."""
         return self._read("contact", name)
 
     def contact_all(self):
