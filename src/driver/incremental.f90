@@ -41,18 +41,17 @@ module incremental
    use solver_factory, only: create_solver, choose_solver
    use contact_system, only: contact_equations
    use contact_system_factory, only: create_contact_system
-   use assembly, only: assemble_bodies, assemble_load_cases, load_increment
+   use assembly, only: assemble_bodies, assemble_load_cases
    use contact_assembly, only: pair_links, spring_nodal_forces
    use body_fields, only: recover_stresses, update_reactions, number_bodies, body_imbalance, &
                           stiffness_range, zero_fields, estimate_error
    use contact_types, only: UPDATE_RETURN
-   use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, commit_increment, &
-                                law_drift, augment_multipliers, MAX_SWITCH, tangential_drift
+   use contact_algorithm, only: contact_state_t, commit_increment, law_drift, MAX_SWITCH, tangential_drift
    use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
-                         sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, &
+                         sliding_warning, run_history_t, IMBALANCE_NOT_COMPUTED, &
                          imbalance_limit
-   use contact_start, only: init_contact_states, start_pressure, increment_pressure
-   use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular, out_of_balance
+   use contact_start, only: init_contact_states, start_pressure
+   use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular, attempt_increment
    use contact_fields, only: build_contact_fields, pair_spacing
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary
@@ -449,155 +448,6 @@ contains
       call recover_stresses(m, res%body_fields_t, status)
       if (status%ok()) call update_reactions(an%coup, an%map, fext, fsp, res%body_fields_t)
    end subroutine body_step_fields
-
-   !> One attempt at an increment of the load factors dlam from the committed
-   !! state: solve, check the springs, repeat until they keep their modes and
-   !! balance (or the cap).  Nothing is committed here; the contact system
-   !! gives the solution at the contact equations (at least), `recover` the
-   !! full increment once the attempt is accepted.
-   subroutine attempt_increment(an, m, st, dlam, carry, fext_new, first, att, status)
-      type(analysis_t), intent(inout) :: an
-      type(model_t), intent(in) :: m
-      type(contact_state_t), intent(inout) :: st
-      real(dp), intent(in) :: dlam(:), carry(:), fext_new(:, :)
-      logical, intent(in) :: first
-      type(attempt_t), intent(inout) :: att
-      type(status_t), intent(inout) :: status
-      real(dp), allocatable :: rhs(:), ddu(:, :), rvec(:, :), rpred(:, :)
-      logical, allocatable :: changed(:)
-      integer :: iter, maxit
-      real(dp) :: fscale, dnorm
-      logical :: need_matrix, done, again, newton, hold
-
-      allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), rpred(an%springs%nd, an%npair), &
-                changed(an%npair))
-      rvec = 0.0_dp
-      rpred = 0.0_dp
-      if (.not. allocated(att%du)) allocate (att%du(2, m%npoin), att%carry(an%map%neq))
-      att%du = 0.0_dp
-      att%solutions = 0
-      att%repeats = 0
-      att%converged = .false.
-      att%changing = .false.
-      att%rnorm = 0.0_dp
-      st%chatter = .false.
-      newton = an%returning .and. st%has_rough
-      att%dnorm = 0.0_dp
-      hold = .false.
-      call load_increment(an%coup, an%map, an%fcase, an%ucase, an%restrained, dlam, carry, rhs, att%du)
-      fscale = max(maxval([0.0_dp, abs(rhs)]), maxval(abs(fext_new)), 1.0e-300_dp)
-      ! spring forces and modes at the start of the increment
-      if (an%has_contact) then
-         ! the pressure a reload from zero force is expected to bring (0: none)
-         if (.not. first .and. st%has_rough) call increment_pressure(m, an%fcase, dlam, st)
-         call begin_increment(m%contact, st, first)
-         call an%springs%start_forces(m%contact, st, rvec, rpred, rhs)
-      end if
-
-      call an%sys%begin_attempt()
-      ddu = att%du       ! first solve: prescribed increments at the restrained dofs
-      need_matrix = an%has_contact .or. .not. an%system_current
-      maxit = 1
-      if (an%has_contact) maxit = an%maxrep
-      do iter = 1, maxit
-         if (need_matrix) then
-            call set_system(an, m, st, status)
-            if (.not. status%ok()) return
-         end if
-         if (iter == 1) then
-            call an%springs%subtract_prescribed(m%contact%pairs, ddu, rhs)
-            ! an increment driven only through springs of prescribed nodes (a rigid
-            ! body's reference node belongs to no element) has no other force to
-            ! measure its out-of-balance force against
-            if (fscale <= 1.0e-300_dp .and. an%map%neq > 0) fscale = max(maxval(abs(rhs)), 1.0e-300_dp)
-            ! an increment that holds a zero load (nothing but the carried out-of-balance
-            ! force drives it) is measured against the last increment's scale
-            ! (the load, a sum of increments, is zero to round-off of the run's forces)
-            if (an%map%neq > 0 .and. maxval(abs(fext_new)) <= 1.0e-12_dp*an%force_scale) then
-               hold = maxval(abs(rhs - carry)) <= 1.0e-12_dp*an%force_scale
-               if (hold) fscale = max(fscale, att%fscale)
-            end if
-         end if
-         ! the solution at (at least) the contact equations' dofs
-         call an%sys%solve(rhs, ddu, status)
-         if (.not. status%ok()) then
-            call describe_singular(an, status)
-            return
-         end if
-         att%solutions = iter
-         att%du = att%du + merge(0.0_dp, ddu, an%restrained)
-         if (.not. an%has_contact) then
-            att%converged = .true.
-            rhs = 0.0_dp         ! it held the solution: no out-of-balance force is left
-            exit
-         end if
-         ! predicted spring forces (the linearisation the solve used) ...
-         call an%springs%predicted_forces(m%contact%pairs, rvec, ddu, rpred)
-         ! (a hold moves by round-off only: its corrections are measured against the
-         ! largest displacement increment of the run so far)
-         dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/ &
-                 max(maxval(abs(att%du)), merge(att%duscale, 0.0_dp, hold), tiny(1.0_dp))
-         ddu = 0.0_dp
-         ! ... against the actual ones, after the mode checks
-         call update_modes(again)
-         if (again) cycle
-         att%dnorm = dnorm      ! (counts for the Newton return of rough pairs only)
-         if (att%rnorm <= att%rtol .and. &
-             (.not. newton .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
-            if (.not. st%has_ideal) then
-               att%converged = .true.
-               exit
-            end if
-            ! ideal contact: the modes hold and the bodies balance the forces of the
-            ! current multipliers; converged when the penetrations are within
-            ! tolerance, else an Uzawa update and the forces of the new multipliers
-            ! drive the next solution
-            call augment_multipliers(m%contact, st, done)
-            if (done) then
-               att%converged = .true.
-               exit
-            end if
-            call update_modes(again)
-            if (again) cycle
-         end if
-         need_matrix = newton .and. .not. an%modified
-      end do
-      att%carry = rhs
-      att%fscale = fscale
-      if (att%converged .and. .not. hold) att%duscale = max(att%duscale, maxval(abs(att%du)))
-   contains
-      !> Modes and forces of the pairs for the current displacements, and the
-      !! out-of-balance force; again: some mode changed, so the increment is
-      !! repeated with a new matrix.
-      subroutine update_modes(again)
-         logical, intent(out) :: again
-         call evaluate_pairs(m%contact, st, att%du, changed, first)
-         call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
-         call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, m%contact%opts%tol_residual, att)
-         att%changing = any(changed)
-         att%nchanged = count(changed)
-         att%first_changed = findloc(changed, .true., dim=1)
-         again = att%changing
-         if (again) then
-            att%repeats = att%repeats + 1
-            need_matrix = .true.
-         end if
-      end subroutine update_modes
-   end subroutine attempt_increment
-
-   !> Put the springs of the current modes into the contact system.
-   subroutine set_system(an, m, st, status)
-      type(analysis_t), intent(inout) :: an
-      type(model_t), intent(in) :: m
-      type(contact_state_t), intent(in) :: st
-      type(status_t), intent(inout) :: status
-      call check_finite_springs(st, status)
-      if (.not. status%ok()) return
-      call an%springs%set_matrices(m%contact, st)
-      call an%sys%set_springs(an%springs%kstore, status)
-      an%system_current = status%ok()
-      if (.not. status%ok()) call describe_singular(an, status)
-   end subroutine set_system
 
    !> Fields, checks, output and progress of an accepted step.
    subroutine finish_step(m, an, res, out, fext, ve_old, srec, status)
