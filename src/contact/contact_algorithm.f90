@@ -1209,7 +1209,8 @@ contains
    !! the law's own force and back force after the last increment (tlaw, kept
    !! by the caller); a pair that opens forgets them, one that closes starts
    !! from zero, one at zero normal force (to 1e-12 of its forces) slips with
-   !! F_T = 0 (the rules of tangential_return).  The NEWTON update commits
+   !! F_T = 0 (the rules of tangential_return) and is on the law with any
+   !! |F_T| <= mu F_n (a touching pair's force is clamped to that).  The NEWTON update commits
    !! exactly that force (drift 0 to round-off); the paper's explicit scheme
    !! keeps the stiffness of the assumed state for the whole increment and its
    !! own reading of the memory, and drifts.  Call once per committed
@@ -1241,13 +1242,16 @@ contains
             x0 = merge(0.0_dp, tlaw(2, j), md%newly_closed)
             call bilinear_return(f0, st%dut(j), md%kte, ifc%kappa, md%mu*max(s%fn, 0.0_dp), x0, ifc%hardening, &
                                  ft, xb, itrial)
+            d = abs(s%ft - ft)
             if (s%fn <= 1.0e-12_dp*max(tlaw(3, j), pr%area*md%pa, tiny(1.0_dp))) then
                ft = 0.0_dp
                xb = 0.0_dp
+               ! at zero normal force to round-off the law holds any |F_T| <= mu F_n (a
+               ! touching pair's committed force is clamped there, commit_increment)
+               d = max(abs(s%ft) - md%mu*max(s%fn, 0.0_dp), 0.0_dp)
             end if
             tlaw(:, j) = [ft, xb, s%fn]
             fmax = max(fmax, md%mu*s%fn)
-            d = abs(s%ft - ft)
             if (d > dmax) then
                dmax = d
                worst = j
