@@ -319,7 +319,7 @@ def check_uniform(sc, r):
         p = s.contact("pressure")
         keep = [j for j in range(len(p)) if area[j] > 0.0]
         npairs += len(keep)
-        dp = max(abs(p[j] - max(lam[k], 0.0) * sc.p0) for j in keep)
+        dp = max([abs(p[j] - max(lam[k], 0.0) * sc.p0) for j in keep] + [0.0])
         if dp > ptol:
             msgs.append("increment %d (lambda %.6g): pressure off lambda p0 by %.3e of p0 (tolerance %.3e)"
                         % (s.number, lam[k], dp / sc.p0, ptol / sc.p0))
