@@ -13,12 +13,14 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt.py [-v] [CLAS
   surface nodes joined the surfaces, the new restrained nodes are restrained) -- a constant
   stress state is reproduced to round-off, so 1e-9; the recovery-based estimate of a constant
   stress is round-off (1e-9).  Lame's cylinder through tools/adapt.py: three meshes of 8, 32,
-  128 elements; the estimate against the exact energy-norm error from the closed form, and the
+  128 elements; the estimate against the exact energy-norm error from the closed form (effectivity
+  in [0.7, 1.5] past the coarsest mesh, issue 23's band), and the
   Richardson extrapolation of the largest von Mises stress against the closed form at the bore;
   the V2 tangential patch test (a tied rigid plate) stays exact after splitting; a deck with
   contact PAIRS is refused with exit code 2 and a message naming file, line and PAIRS.
 * Sizes: the size formula equidistributes the error (every new element the same share) and
-  meets the target; the program's `error_indicator` is used when a result file has it; the
+  meets the target; the program's `error_indicator` is used when a result file has it (and the
+  recovery estimate of k2d.adapt for a result without it); the
   contact tractions ask for their smallest elements at the edge of the punch, sizes ~ sqrt(target).
 * GeoDeck: tools/adapt.py on a small punch-on-foundation .geo deck reaches the target, and
   adaptive remeshing reaches it with fewer DOFs than uniform remeshing; no mesh exceeds the DOF
@@ -191,16 +193,26 @@ class CardDeck(unittest.TestCase):
         E, nu, a, b, p, height = 2e5, 0.3, 10.0, 20.0, 100.0, 2.0
         A, B = p * a * a / (b * b - a * a), p * a * a * b * b / (b * b - a * a)
         ua = (1 + nu) / E * ((1 - 2 * nu) * A * a + B / a)
+        effs = []
         for r in rows:
             res = Result(os.path.join(out, "steps_uniform", "lame_cylinder_%02d.h5" % int(r["step"])))
+            self.assertEqual(r["source"], "program")        # the program's estimate, not the fallback
             xy, u = res.mesh.coordinates, res.last.field("displacement")
             uha = u[np.abs(xy[:, 0] - a) < 1e-9, 0].mean()
             true = math.sqrt((ua - uha) / ua)
-            eff = float(r["estimated_error"]) / true
-            # superconvergent patch recovery is asymptotically exact (effectivity -> 1); measured
-            # 0.76, 0.84, 0.89 on the three meshes: the bound fails an estimate off by 30 %
-            with self.subTest(step=r["step"]):
-                self.assertTrue(0.7 < eff < 1.3, "effectivity %.3f" % eff)
+            effs.append(float(r["estimated_error"]) / true)
+        print("Lame effectivities (8, 32, 128 elements): %s" % ", ".join("%.3f" % e for e in effs))
+        # issue 23's band: effectivity in [0.7, 1.5] at every level past the coarsest (measured
+        # 0.98 and 1.00 there: the bound fails an estimate off by 30 % below or 50 % above).  The
+        # coarsest mesh, two Q8 across the wall, is exempt (a recovery patch spans the whole wall,
+        # not the asymptotic range: measured 1.68); it is reported, and only held to a factor 3
+        # (an estimate off by an order of magnitude there is still a fault)
+        self.assertTrue(1.0 / 3.0 < effs[0] < 3.0, "coarsest effectivity %.3f" % effs[0])
+        for k, eff in enumerate(effs[1:], 1):
+            with self.subTest(level=k):
+                self.assertTrue(0.7 <= eff <= 1.5, "effectivity %.3f" % eff)
+        # and it approaches 1 under refinement (asymptotic exactness of the recovery)
+        self.assertLess(abs(effs[-1] - 1.0), abs(effs[1] - 1.0) + 0.02)
         # Richardson on the largest von Mises stress (at the Gauss points nearest the bore,
         # 0.113 h from it): extrapolated to h = 0 it is the closed form at the bore
         s_r, s_t, s_z = A - B / a ** 2, A + B / a ** 2, 2 * nu * A
@@ -335,30 +347,46 @@ class GeoDeck(unittest.TestCase):
         self.assertTrue(np.all(limited >= 0.2 * h - 1e-12))
 
     def test_program_indicator_used(self):
+        # the program writes its estimate into every increment: the tool must take it
         r = Result(os.path.join(self.out, "steps_adaptive", "punch_adapt_00.h5"))
         n = len(r.mesh.element_nodes)
-        eta = np.full(n, 1e-3)
-        eta[5] = 0.1
+        last = r.last
+        self.assertIsNotNone(last.error_indicator)
+        eta, est, source = ad.indicator(r, ad.deck_materials(self.deck))
+        self.assertEqual(source, "program")
+        np.testing.assert_array_equal(eta, np.ravel(last.error_indicator))
+        self.assertEqual(eta.shape, (n,))
+        self.assertEqual(est, last.estimated_error)
+        # the model's estimate is the root sum of squares of the element indicators
+        self.assertAlmostEqual(est, math.sqrt(np.sum(eta ** 2)), delta=1e-6 * est)
+        # the size field follows the indicator: the element with the largest eta_e shrinks most
+        h, p = ad.element_sizes(r)
+        hnew, _ = ad.new_sizes(eta, h, p, 0.05, shrink=(1e-9, 1e9))
+        self.assertEqual(int(np.argmin(hnew / h)), int(np.argmax(eta)))
+
+    def test_fallback_without_program_indicator(self):
+        # a result without the dataset (a file written before the program estimated its error):
+        # the stress-recovery estimate of k2d.adapt
+        r = Result(os.path.join(self.out, "steps_adaptive", "punch_adapt_00.h5"))
         last = r.last
 
-        class WithIndicator:
-            """The last increment as the program writes it once it estimates its error: the
-            dataset and the attribute of docs/results-format.md (no result file is written here)."""
-            name, number = last.name, last.number
-            attrs = dict(last.attrs, **{ad.PROGRAM_ESTIMATE: 0.123})
+        class WithoutIndicator:
+            """The last increment as a result file without `error_indicator` reads."""
+            name, number, attrs = last.name, last.number, last.attrs
+            error_indicator = estimated_error = None
 
             def field(self, key):
-                return eta if key == ad.PROGRAM_INDICATOR else last.field(key)
+                return last.field(key)
 
-        got, est, source = ad.indicator(r, ad.deck_materials(self.deck), WithIndicator())
-        self.assertEqual(source, "program")
-        self.assertEqual(est, 0.123)
-        np.testing.assert_array_equal(got, eta)
-        h, p = ad.element_sizes(r)
-        hnew, _ = ad.new_sizes(got, h, p, 0.05)
-        self.assertEqual(int(np.argmin(hnew / h)), 5)
-        # without the dataset: the recovery estimate
-        self.assertEqual(ad.indicator(r, ad.deck_materials(self.deck))[2], "stress recovery")
+        eta, est, source = ad.indicator(r, ad.deck_materials(self.deck), WithoutIndicator())
+        self.assertEqual(source, "stress recovery")
+        self.assertEqual(eta.shape, (len(r.mesh.element_nodes),))
+        self.assertAlmostEqual(est, math.sqrt(np.sum(eta ** 2)), delta=1e-12)
+        # both are Zienkiewicz-Zhu recovery estimates of the same solution: they agree within a
+        # factor 2 (the recovered stresses differ; a wrong energy weighting or a missing
+        # normalisation would be off by far more: thickness 10, E = 4000)
+        prog = last.estimated_error
+        self.assertTrue(0.5 < est / prog < 2.0, "recovery %.4g against the program's %.4g" % (est, prog))
 
     def test_budget(self):
         out = os.path.join(self.work, "budget")
