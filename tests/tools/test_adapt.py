@@ -1,12 +1,15 @@
 #!/usr/bin/python3
 """Tests of tools/adapt.py and its library (k2d.adapt, k2d.refine); docs/adaptivity.md.
 
-Run by ctest (tests/tools/CMakeLists.txt: tools_adapt_cards runs Richardson and CardDeck,
+Run by ctest (tests/tools/CMakeLists.txt: tools_adapt_cards runs Richardson, Validation and CardDeck,
 tools_adapt_geo runs Sizes and GeoDeck) with PYTHONPATH=<source>/tools and K2D_EXECUTABLE;
 by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt.py [-v] [CLASS ...]
 
 * Richardson: a value f(h) = f0 + c h^2 on h, h/2, h/4 gives the order 2 and f0 to round-off;
   an oscillating or diverging sequence is "not in the asymptotic range" and gets no order.
+* Validation: the arithmetic of tools/adapt_validation.py -- the energy extrapolation recovers
+  U_inf, C, q of U = U_inf - C N^-q; Hertz's p0 a = 2 P'/pi; the punch's edge-band mean pressure
+  against a trapezoidal integration of Sadowsky's p(x) (the studies themselves are scripts).
 * CardDeck: the uniform splitting keeps the V1 patch tests exact (Q8 plane strain with graded
   elements and quadratic edge loads, Q4 axisymmetric): after one and two splittings every pair
   carries p = 1, the contact area and the total force are unchanged, the pairs double (the new
@@ -95,6 +98,37 @@ class Richardson(unittest.TestCase):
         r = ad.richardson(4.0, 4.0, 4.0)
         self.assertEqual(r["error"], 0.0)
         self.assertEqual(r["extrapolated"], 4.0)
+
+
+class Validation(unittest.TestCase):
+    """The arithmetic of tools/adapt_validation.py (the study itself is too long for the suite)."""
+
+    @classmethod
+    def setUpClass(cls):
+        sys.path.insert(0, os.path.join(ROOT, "tools"))
+        import adapt_validation
+        cls.v = adapt_validation
+
+    def test_energy_extrapolation(self):
+        # U_inf - U = C N^-q through three points: U_inf, C and q back to round-off
+        N = np.array([900.0, 3700.0, 15000.0])
+        U = 5.0 - 3.0 * N ** -0.7
+        Uinf, C, q = self.v.extrapolate(N, U)
+        self.assertAlmostEqual(Uinf, 5.0, delta=1e-9)
+        self.assertAlmostEqual(C, 3.0, delta=1e-6)
+        self.assertAlmostEqual(q, 0.7, delta=1e-8)
+
+    def test_closed_forms(self):
+        # Hertz (plane strain, two equal cylinders' E*): p0 a = 2 P' / pi, a of the deck's comment
+        h = self.v.hertz_exact()
+        self.assertAlmostEqual(h["p0"] * h["a"], 2 * 200.0 / math.pi, delta=1e-9)
+        self.assertAlmostEqual(h["a"], 0.5754, delta=5e-5)
+        # the punch's edge band: the integral of P'/(pi sqrt(b^2 - x^2)) over 0.9 b..b, by the
+        # trapezoidal rule after x = b - t^2 (a smooth integrand), against the arcsine form
+        t = np.linspace(0.0, math.sqrt(0.1), 20001)
+        f = 2.0 * 100.0 / (math.pi * np.sqrt(2.0 - t * t))
+        band = float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(t)))
+        self.assertAlmostEqual(self.v.punch_exact()["band_mean"], band / 0.1, delta=1e-6)
 
 
 class CardDeck(unittest.TestCase):
