@@ -19,6 +19,9 @@ inputs/adapt/ and measures every mesh of both sequences against the closed forms
   pairs: the normal forces of the pairs beyond 0.9 b, plus the pressure of the pair at 0.9 b
   (a node of every mesh: a point of the .geo) times half its outer edge.
 
+* punch_flat_q8: the same punch with 8-node quadrilaterals (punch_flat_q8.geo includes
+  punch_flat.geo and asks for incomplete second order).
+
 For each mesh: DOFs, the program's energy estimate, ||u_h||^2 (twice the strain energy, by the
 Gauss rules), the measure's error against the closed form, CPU seconds (adapt.py's CSV).  The
 exact energy ||u||^2 of the truncated bodies has no closed form: it is extrapolated from the
@@ -74,8 +77,10 @@ def punch_measure(r, b=1.0, band=0.1):
     k = int(np.argmin(np.abs(x - x0)))
     if abs(x[k] - x0) > 1e-9 * b:
         raise ValueError("%s: no pair at x = %g" % (r.path, x0))
-    outer = 0.5 * (x[k + 1] - x[k]) if k + 1 < len(x) else 0.0
-    return float((np.sum(f[k + 1:]) + p[k] * outer) / (band * b))
+    # the pair at 0.9 b: the share of its force from its outer side, (x[k+1] - x[k]) / (x[k+1] - x[k-1])
+    # of it (half its outer edge over half its two edges, for linear and quadratic edges alike)
+    outer = (x[k + 1] - x[k]) / (x[k + 1] - x[k - 1])
+    return float((np.sum(f[k + 1:]) + f[k] * outer) / (band * b))
 
 
 CASES = {
@@ -87,6 +92,9 @@ CASES = {
     "punch_flat": dict(measure=punch_measure, exact=lambda: punch_exact()["band_mean"],
                        label="punch edge pressure (mean over 0.9b..b)",
                        title="Flat punch on a half-plane (Q4, plane strain)", energy=True),
+    "punch_flat_q8": dict(measure=punch_measure, exact=lambda: punch_exact()["band_mean"],
+                          label="punch edge pressure (mean over 0.9b..b)",
+                          title="Flat punch on a half-plane (Q8, plane strain)", energy=True),
 }
 
 
@@ -246,7 +254,7 @@ def main(argv=None):
     ap.add_argument("--md", default=None)
     ap.add_argument("--png", default=os.path.join(ROOT, "docs", "figures", "adapt_validation.png"))
     ap.add_argument("--exe", default=None)
-    ap.add_argument("--cases", nargs="*", default=list(CASES))
+    ap.add_argument("--cases", nargs="*", default=list(CASES), choices=list(CASES))
     args = ap.parse_args(argv)
     exe = find_or_build(args.exe)
     studies = [study(n, args.runs, args.target, args.max_dofs, exe, args.reuse) for n in args.cases]
