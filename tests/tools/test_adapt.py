@@ -1,24 +1,29 @@
 #!/usr/bin/python3
 """Tests of tools/adapt.py and its library (k2d.adapt, k2d.refine); docs/adaptivity.md.
 
-Run by ctest (tests/tools/CMakeLists.txt: tools_adapt_cards runs Richardson and CardDeck,
+Run by ctest (tests/tools/CMakeLists.txt: tools_adapt_cards runs Richardson, Validation and CardDeck,
 tools_adapt_geo runs Sizes and GeoDeck) with PYTHONPATH=<source>/tools and K2D_EXECUTABLE;
 by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt.py [-v] [CLASS ...]
 
 * Richardson: a value f(h) = f0 + c h^2 on h, h/2, h/4 gives the order 2 and f0 to round-off;
   an oscillating or diverging sequence is "not in the asymptotic range" and gets no order.
+* Validation: the arithmetic of tools/adapt_validation.py -- the energy extrapolation recovers
+  U_inf, C, q of U = U_inf - C N^-q; Hertz's p0 a = 2 P'/pi; the punch's edge-band mean pressure
+  against a trapezoidal integration of Sadowsky's p(x) (the studies themselves are scripts).
 * CardDeck: the uniform splitting keeps the V1 patch tests exact (Q8 plane strain with graded
   elements and quadratic edge loads, Q4 axisymmetric): after one and two splittings every pair
   carries p = 1, the contact area and the total force are unchanged, the pairs double (the new
   surface nodes joined the surfaces, the new restrained nodes are restrained) -- a constant
   stress state is reproduced to round-off, so 1e-9; the recovery-based estimate of a constant
   stress is round-off (1e-9).  Lame's cylinder through tools/adapt.py: three meshes of 8, 32,
-  128 elements; the estimate against the exact energy-norm error from the closed form, and the
+  128 elements; the estimate against the exact energy-norm error from the closed form (effectivity
+  in [0.7, 1.5] past the coarsest mesh, issue 23's band), and the
   Richardson extrapolation of the largest von Mises stress against the closed form at the bore;
   the V2 tangential patch test (a tied rigid plate) stays exact after splitting; a deck with
   contact PAIRS is refused with exit code 2 and a message naming file, line and PAIRS.
 * Sizes: the size formula equidistributes the error (every new element the same share) and
-  meets the target; the program's `error_indicator` is used when a result file has it; the
+  meets the target; the program's `error_indicator` is used when a result file has it (and the
+  recovery estimate of k2d.adapt for a result without it); the
   contact tractions ask for their smallest elements at the edge of the punch, sizes ~ sqrt(target).
 * GeoDeck: tools/adapt.py on a small punch-on-foundation .geo deck reaches the target, and
   adaptive remeshing reaches it with fewer DOFs than uniform remeshing; no mesh exceeds the DOF
@@ -93,6 +98,37 @@ class Richardson(unittest.TestCase):
         r = ad.richardson(4.0, 4.0, 4.0)
         self.assertEqual(r["error"], 0.0)
         self.assertEqual(r["extrapolated"], 4.0)
+
+
+class Validation(unittest.TestCase):
+    """The arithmetic of tools/adapt_validation.py (the study itself is too long for the suite)."""
+
+    @classmethod
+    def setUpClass(cls):
+        sys.path.insert(0, os.path.join(ROOT, "tools"))
+        import adapt_validation
+        cls.v = adapt_validation
+
+    def test_energy_extrapolation(self):
+        # U_inf - U = C N^-q through three points: U_inf, C and q back to round-off
+        N = np.array([900.0, 3700.0, 15000.0])
+        U = 5.0 - 3.0 * N ** -0.7
+        Uinf, C, q = self.v.extrapolate(N, U)
+        self.assertAlmostEqual(Uinf, 5.0, delta=1e-9)
+        self.assertAlmostEqual(C, 3.0, delta=1e-6)
+        self.assertAlmostEqual(q, 0.7, delta=1e-8)
+
+    def test_closed_forms(self):
+        # Hertz (plane strain, two equal cylinders' E*): p0 a = 2 P' / pi, a of the deck's comment
+        h = self.v.hertz_exact()
+        self.assertAlmostEqual(h["p0"] * h["a"], 2 * 200.0 / math.pi, delta=1e-9)
+        self.assertAlmostEqual(h["a"], 0.5754, delta=5e-5)
+        # the punch's edge band: the integral of P'/(pi sqrt(b^2 - x^2)) over 0.9 b..b, by the
+        # trapezoidal rule after x = b - t^2 (a smooth integrand), against the arcsine form
+        t = np.linspace(0.0, math.sqrt(0.1), 20001)
+        f = 2.0 * 100.0 / (math.pi * np.sqrt(2.0 - t * t))
+        band = float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(t)))
+        self.assertAlmostEqual(self.v.punch_exact()["band_mean"], band / 0.1, delta=1e-6)
 
 
 class CardDeck(unittest.TestCase):
@@ -191,16 +227,26 @@ class CardDeck(unittest.TestCase):
         E, nu, a, b, p, height = 2e5, 0.3, 10.0, 20.0, 100.0, 2.0
         A, B = p * a * a / (b * b - a * a), p * a * a * b * b / (b * b - a * a)
         ua = (1 + nu) / E * ((1 - 2 * nu) * A * a + B / a)
+        effs = []
         for r in rows:
             res = Result(os.path.join(out, "steps_uniform", "lame_cylinder_%02d.h5" % int(r["step"])))
+            self.assertEqual(r["source"], "program")        # the program's estimate, not the fallback
             xy, u = res.mesh.coordinates, res.last.field("displacement")
             uha = u[np.abs(xy[:, 0] - a) < 1e-9, 0].mean()
             true = math.sqrt((ua - uha) / ua)
-            eff = float(r["estimated_error"]) / true
-            # superconvergent patch recovery is asymptotically exact (effectivity -> 1); measured
-            # 0.76, 0.84, 0.89 on the three meshes: the bound fails an estimate off by 30 %
-            with self.subTest(step=r["step"]):
-                self.assertTrue(0.7 < eff < 1.3, "effectivity %.3f" % eff)
+            effs.append(float(r["estimated_error"]) / true)
+        print("Lame effectivities (8, 32, 128 elements): %s" % ", ".join("%.3f" % e for e in effs))
+        # issue 23's band: effectivity in [0.7, 1.5] at every level past the coarsest (measured
+        # 0.98 and 1.00 there: the bound fails an estimate off by 30 % below or 50 % above).  The
+        # coarsest mesh, two Q8 across the wall, is exempt (a recovery patch spans the whole wall,
+        # not the asymptotic range: measured 1.68); it is reported, and only held to a factor 3
+        # (an estimate off by an order of magnitude there is still a fault)
+        self.assertTrue(1.0 / 3.0 < effs[0] < 3.0, "coarsest effectivity %.3f" % effs[0])
+        for k, eff in enumerate(effs[1:], 1):
+            with self.subTest(level=k):
+                self.assertTrue(0.7 <= eff <= 1.5, "effectivity %.3f" % eff)
+        # and it approaches 1 under refinement (asymptotic exactness of the recovery)
+        self.assertLess(abs(effs[-1] - 1.0), abs(effs[1] - 1.0) + 0.02)
         # Richardson on the largest von Mises stress (at the Gauss points nearest the bore,
         # 0.113 h from it): extrapolated to h = 0 it is the closed form at the bore
         s_r, s_t, s_z = A - B / a ** 2, A + B / a ** 2, 2 * nu * A
@@ -335,30 +381,46 @@ class GeoDeck(unittest.TestCase):
         self.assertTrue(np.all(limited >= 0.2 * h - 1e-12))
 
     def test_program_indicator_used(self):
+        # the program writes its estimate into every increment: the tool must take it
         r = Result(os.path.join(self.out, "steps_adaptive", "punch_adapt_00.h5"))
         n = len(r.mesh.element_nodes)
-        eta = np.full(n, 1e-3)
-        eta[5] = 0.1
+        last = r.last
+        self.assertIsNotNone(last.error_indicator)
+        eta, est, source = ad.indicator(r, ad.deck_materials(self.deck))
+        self.assertEqual(source, "program")
+        np.testing.assert_array_equal(eta, np.ravel(last.error_indicator))
+        self.assertEqual(eta.shape, (n,))
+        self.assertEqual(est, last.estimated_error)
+        # the model's estimate is the root sum of squares of the element indicators
+        self.assertAlmostEqual(est, math.sqrt(np.sum(eta ** 2)), delta=1e-6 * est)
+        # the size field follows the indicator: the element with the largest eta_e shrinks most
+        h, p = ad.element_sizes(r)
+        hnew, _ = ad.new_sizes(eta, h, p, 0.05, shrink=(1e-9, 1e9))
+        self.assertEqual(int(np.argmin(hnew / h)), int(np.argmax(eta)))
+
+    def test_fallback_without_program_indicator(self):
+        # a result without the dataset (a file written before the program estimated its error):
+        # the stress-recovery estimate of k2d.adapt
+        r = Result(os.path.join(self.out, "steps_adaptive", "punch_adapt_00.h5"))
         last = r.last
 
-        class WithIndicator:
-            """The last increment as the program writes it once it estimates its error: the
-            dataset and the attribute of docs/results-format.md (no result file is written here)."""
-            name, number = last.name, last.number
-            attrs = dict(last.attrs, **{ad.PROGRAM_ESTIMATE: 0.123})
+        class WithoutIndicator:
+            """The last increment as a result file without `error_indicator` reads."""
+            name, number, attrs = last.name, last.number, last.attrs
+            error_indicator = estimated_error = None
 
             def field(self, key):
-                return eta if key == ad.PROGRAM_INDICATOR else last.field(key)
+                return last.field(key)
 
-        got, est, source = ad.indicator(r, ad.deck_materials(self.deck), WithIndicator())
-        self.assertEqual(source, "program")
-        self.assertEqual(est, 0.123)
-        np.testing.assert_array_equal(got, eta)
-        h, p = ad.element_sizes(r)
-        hnew, _ = ad.new_sizes(got, h, p, 0.05)
-        self.assertEqual(int(np.argmin(hnew / h)), 5)
-        # without the dataset: the recovery estimate
-        self.assertEqual(ad.indicator(r, ad.deck_materials(self.deck))[2], "stress recovery")
+        eta, est, source = ad.indicator(r, ad.deck_materials(self.deck), WithoutIndicator())
+        self.assertEqual(source, "stress recovery")
+        self.assertEqual(eta.shape, (len(r.mesh.element_nodes),))
+        self.assertAlmostEqual(est, math.sqrt(np.sum(eta ** 2)), delta=1e-12)
+        # both are Zienkiewicz-Zhu recovery estimates of the same solution: they agree within a
+        # factor 2 (the recovered stresses differ; a wrong energy weighting or a missing
+        # normalisation would be off by far more: thickness 10, E = 4000)
+        prog = last.estimated_error
+        self.assertTrue(0.5 < est / prog < 2.0, "recovery %.4g against the program's %.4g" % (est, prog))
 
     def test_budget(self):
         out = os.path.join(self.work, "budget")

@@ -32,9 +32,6 @@ import numpy as np
 
 from .results import Result
 
-PROGRAM_INDICATOR = "error_indicator"       # per-element dataset of an increment group
-PROGRAM_ESTIMATE = "estimated_error"        # its attribute: the global relative estimate
-
 
 class AdaptError(Exception):
     """A request tools/adapt.py cannot serve; the message says what and why."""
@@ -244,13 +241,12 @@ def spr_stress(result, sg, order):
     return acc
 
 
-def zz_indicator(result, materials, step=None):
-    """(eta_e (nelem), the global relative estimate) of a step (default the last) from the
-    difference of the recovered and the Gauss-point stresses: module docstring."""
+def _element_energies(result, materials, step, recovered=True):
+    """Per element: (integral of (sigma* - sigma_h) : C^-1 (sigma* - sigma_h) dV, or None without
+    `recovered`; integral of sigma_h : C^-1 sigma_h dV) over the element's Gauss points."""
     m = result.mesh
-    step = step or result.last
     sg = step.field("stress_gauss")
-    sn = spr_stress(result, sg, 2 if np.max(result.mesh.element_nodes) >= 8 else 1)
+    sn = spr_stress(result, sg, 2 if np.max(result.mesh.element_nodes) >= 8 else 1) if recovered else None
     ge = m.gauss_element - 1
     gp = m.gauss_coordinates.reshape(-1, 2)
     conn = m.connectivity
@@ -274,10 +270,25 @@ def zz_indicator(result, materials, step=None):
             k = count[e] == cnt
             w[k] = _gauss_weights(int(nn), loc[k], int(cnt))
         dv = w * np.abs(detJ) * (2 * np.pi * gp[sel, 0] if axi else tmat[e])
-        star = np.einsum("pk,pkc->pc", N, sn[c])
         h = sg[sel]
-        err += np.bincount(e, dv * energy_density(star - h, Emat[e], numat[e]), minlength=nelem)
+        if recovered:
+            star = np.einsum("pk,pkc->pc", N, sn[c])
+            err += np.bincount(e, dv * energy_density(star - h, Emat[e], numat[e]), minlength=nelem)
         ref += np.bincount(e, dv * energy_density(h, Emat[e], numat[e]), minlength=nelem)
+    return (err if recovered else None), ref
+
+
+def energy_norm2(result, materials, step=None):
+    """||u_h||^2 = integral of sigma_h : C^-1 sigma_h dV over the model (twice its strain energy)
+    at a step (default the last), by the elements' Gauss rules."""
+    return float(np.sum(_element_energies(result, materials, step or result.last, recovered=False)[1]))
+
+
+def zz_indicator(result, materials, step=None):
+    """(eta_e (nelem), the global relative estimate) of a step (default the last) from the
+    difference of the recovered and the Gauss-point stresses: module docstring."""
+    err, ref = _element_energies(result, materials, step or result.last)
+    nelem = len(ref)
     total = ref.sum() + err.sum()
     if total <= 0.0:
         return np.zeros(nelem), 0.0
@@ -287,16 +298,17 @@ def zz_indicator(result, materials, step=None):
 
 def indicator(result, materials, step=None):
     """(eta_e, estimate, source) of a step (default the last): the program's indicator when
-    the result file has it (source "program"), else zz_indicator (source "stress recovery")."""
+    the result file has it (source "program": the step's error_indicator, one per element, and
+    its estimated_error, read by k2d.results), else zz_indicator (source "stress recovery")."""
     step = step or result.last
-    try:
-        eta = np.asarray(step.field(PROGRAM_INDICATOR), dtype=float)
-    except KeyError:
-        eta = None
-    if eta is not None and eta.shape == (len(result.mesh.element_nodes),):
-        est = step.attrs.get(PROGRAM_ESTIMATE)
-        est = float(np.atleast_1d(est)[0]) if est is not None else float(np.sqrt(np.sum(eta ** 2)))
-        return eta, est, "program"
+    eta = step.error_indicator
+    if eta is not None:
+        eta = np.asarray(eta, dtype=float).ravel()
+        if eta.shape != (len(result.mesh.element_nodes),):
+            raise AdaptError("%s: increment %d has %d error indicators for %d elements"
+                             % (result.path, step.number, eta.size, len(result.mesh.element_nodes)))
+        est = step.estimated_error
+        return eta, float(np.sqrt(np.sum(eta ** 2))) if est is None else est, "program"
     eta, est = zz_indicator(result, materials, step)
     return eta, est, "stress recovery"
 
