@@ -36,13 +36,6 @@ EXEMPT = {
     "errors": "covered by test_deck_lexer (printable, the error list and its records) and by "
               "every suite that checks an error code, line or status (test_deck_reader, "
               "test_gmsh_reader, test_solver_factory ...)",
-    # model
-    "model": "TODO: suite missing (find_node_set and find_edge_set are tested through "
-             "test_gmsh_reader; ntype_name and complete_model are not tested on their own)",
-    "contact_types": "TODO: suite missing (its types are used by the contact suites; its logic, "
-                     "the *_name texts of the codes, is not tested on its own)",
-    "contact_spec": "TODO: suite missing (is_rigid_reference; test_contact_surfaces uses only "
-                    "the surface_spec_t type)",
     # assembly
     "body_fields": "covered by test_error_estimator, which builds the fields it estimates from",
     "error_estimate": "covered by test_error_estimator and tests/validation "
