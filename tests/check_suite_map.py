@@ -62,8 +62,6 @@ EXEMPT = {
                     "test_deck_reader and tests/decks/bad only)",
     "group_cards": "TODO: suite missing (the GROUP cards, reached through test_deck_reader and "
                    "tests/decks/bad_gmsh only)",
-    "disk_reserve": "TODO: suite missing (reached through the disk-full decks of tests/decks/fail "
-                    "only)",
     # driver
     "equation_numbering": "covered by test_renumber, which numbers the equations through it",
     "model_input": "covered by test_incremental and the validation suites, which read their "
