@@ -45,7 +45,6 @@ EXEMPT = {
     # contact
     "contact_definition": "TODO: suite missing (reached through the deck suites and "
                           "tests/decks/bad only)",
-    "contact_start": "TODO: suite missing (reached end to end through test_incremental only)",
     # solvers
     "linear_solver": "covered by test_skyline_solver, test_dense_solver, test_umfpack_solver and "
                      "test_mumps_solver: the abstract solver and the checks the solvers share",
