@@ -60,8 +60,6 @@ EXEMPT = {
     # io
     "deck_contact": "TODO: suite missing (the CONTACT and TIES cards, reached through "
                     "test_deck_reader and tests/decks/bad only)",
-    "group_cards": "TODO: suite missing (the GROUP cards, reached through test_deck_reader and "
-                   "tests/decks/bad_gmsh only)",
     # driver
     "equation_numbering": "covered by test_renumber, which numbers the equations through it",
     "model_input": "covered by test_incremental and the validation suites, which read their "
