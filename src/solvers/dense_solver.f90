@@ -108,7 +108,7 @@ contains
    subroutine dense_zero(this)
       class(dense_solver_t), intent(inout) :: this
       if (this%state == ST_EMPTY) &
-         call fatal_internal('dense solver: zero called before analyse', 'dense_solver.f90', 149)
+         call fatal_internal('dense solver: zero called before analyse', 'dense_solver.f90', __LINE__)
       this%k = 0.0_dp
       this%n_outside = 0
       this%bad_eq = 0
@@ -127,7 +127,7 @@ contains
       real(dp), intent(in) :: ke(:, :)    !! element matrix, size(ieq) square, symmetric
       integer :: ia, ib, i, j, nd
 
-      call this%check_element(ieq, ke, 'dense_solver.f90', 158)
+      call this%check_element(ieq, ke, 'dense_solver.f90', __LINE__)
       nd = size(ieq)
       do ib = 1, nd
          j = ieq(ib)
@@ -149,7 +149,7 @@ contains
       class(dense_solver_t), intent(inout) :: this
       if (this%state /= ST_ASSEMBLING) call fatal_internal( &
          'dense solver: store_base needs assembled values (call it before factorize)', &
-         'dense_solver.f90', 194)
+         'dense_solver.f90', __LINE__)
       this%base = this%k
       this%base_outside = this%n_outside
       call update_memory(this)
@@ -159,7 +159,7 @@ contains
    subroutine dense_restore_base(this)
       class(dense_solver_t), intent(inout) :: this
       if (.not. allocated(this%base) .or. this%state == ST_EMPTY) call fatal_internal( &
-         'dense solver: restore_base without store_base', 'dense_solver.f90', 204)
+         'dense solver: restore_base without store_base', 'dense_solver.f90', __LINE__)
       this%k(:, :) = this%base(:, :)
       this%n_outside = this%base_outside
       this%bad_eq = 0

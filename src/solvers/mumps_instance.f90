@@ -86,7 +86,7 @@ contains
       integer, intent(out) :: info1     !! INFOG(1) after JOB = -1
       call parallel_init()              ! done by the main program; a unit test may not have
       if (.not. is_root()) call serve_commands(serve_mumps)
-      if (this%started()) call fatal_internal('mumps: start of a started instance', 'mumps_instance.f90', 89)
+      if (this%started()) call fatal_internal('mumps: start of a started instance', 'mumps_instance.f90', __LINE__)
       last_key = last_key + 1
       this%key = last_key
       allocate (this%id)
@@ -104,7 +104,7 @@ contains
       class(mumps_instance_t), intent(inout) :: this
       integer, intent(in) :: job   !! MUMPS's JOB
       if (.not. associated(this%id)) call fatal_internal('mumps: job '//itoa(job)//' on an instance not started', &
-                                                         'mumps_instance.f90', 106)
+                                                         'mumps_instance.f90', __LINE__)
       if (process_count() > 1) then
          call send_command([MUMPS_SERVICE, job, this%key, this%id%sym])
          if (job /= JOB_START) then
@@ -138,7 +138,7 @@ contains
       integer, intent(in) :: cmd(:)   !! (MUMPS_SERVICE, job, key, sym)
       integer :: k
       if (size(cmd) /= COMMAND_WORDS .or. cmd(1) /= MUMPS_SERVICE) &
-         call fatal_internal('mumps worker: unknown command '//itoa(cmd(1)), 'mumps_instance.f90', 140)
+         call fatal_internal('mumps worker: unknown command '//itoa(cmd(1)), 'mumps_instance.f90', __LINE__)
       if (cmd(2) == JOB_START) then
          k = free_slot()
          slots(k)%key = cmd(3)
@@ -148,7 +148,7 @@ contains
          slots(k)%id%par = 1
       else
          k = findloc(slots(:)%key, cmd(3), dim=1)
-         if (k == 0) call fatal_internal('mumps worker: no instance '//itoa(cmd(3)), 'mumps_instance.f90', 151)
+         if (k == 0) call fatal_internal('mumps worker: no instance '//itoa(cmd(3)), 'mumps_instance.f90', __LINE__)
          call broadcast(slots(k)%id%icntl)
          call broadcast(slots(k)%id%cntl)
       end if

@@ -474,7 +474,7 @@ contains
    subroutine mumps_zero(this)
       class(mumps_solver_t), intent(inout) :: this
       if (this%state == ST_EMPTY) &
-         call fatal_internal('mumps solver: zero called before analyse', 'mumps_solver.f90', 304)
+         call fatal_internal('mumps solver: zero called before analyse', 'mumps_solver.f90', __LINE__)
       if (this%mumps%started()) this%mumps%id%a(:) = 0.0_dp
       this%n_outside = 0
       this%first_outside = 0
@@ -494,7 +494,7 @@ contains
       real(dp), intent(in) :: ke(:, :)    !! element matrix, size(ieq) square, symmetric
       integer :: ia, ib, i, j, nd, p
 
-      call this%check_element(ieq, ke, 'mumps_solver.f90', 325)
+      call this%check_element(ieq, ke, 'mumps_solver.f90', __LINE__)
       nd = size(ieq)
       do ib = 1, nd
          j = ieq(ib)
@@ -540,7 +540,7 @@ contains
    subroutine mumps_store_base(this)
       class(mumps_solver_t), intent(inout) :: this
       if (this%state /= ST_ASSEMBLING) call fatal_internal( &
-         'mumps solver: store_base needs assembled values (call it before factorize)', 'mumps_solver.f90', 370)
+         'mumps solver: store_base needs assembled values (call it before factorize)', 'mumps_solver.f90', __LINE__)
       if (this%mumps%started()) then
          this%base = this%mumps%id%a
       else
@@ -556,7 +556,7 @@ contains
    subroutine mumps_restore_base(this)
       class(mumps_solver_t), intent(inout) :: this
       if (.not. allocated(this%base) .or. this%state == ST_EMPTY) call fatal_internal( &
-         'mumps solver: restore_base without store_base', 'mumps_solver.f90', 386)
+         'mumps solver: restore_base without store_base', 'mumps_solver.f90', __LINE__)
       if (this%mumps%started()) this%mumps%id%a(:) = this%base(:)
       this%n_outside = this%base_outside
       this%first_outside = this%base_first_outside

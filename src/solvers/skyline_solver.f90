@@ -127,7 +127,7 @@ contains
    subroutine skyline_zero(this)
       class(skyline_solver_t), intent(inout) :: this
       if (this%state == ST_EMPTY) &
-         call fatal_internal('skyline solver: zero called before analyse', 'skyline_solver.f90', 236)
+         call fatal_internal('skyline solver: zero called before analyse', 'skyline_solver.f90', __LINE__)
       this%a = 0.0_dp
       this%n_outside = 0
       this%first_outside = 0
@@ -152,7 +152,7 @@ contains
       integer :: ia, ib, i, j, nd
       integer(i8) :: p
 
-      call this%check_element(ieq, ke, 'skyline_solver.f90', 249)
+      call this%check_element(ieq, ke, 'skyline_solver.f90', __LINE__)
       nd = size(ieq)
       do ib = 1, nd
          j = ieq(ib)
@@ -187,7 +187,7 @@ contains
       class(skyline_solver_t), intent(inout) :: this
       if (this%state /= ST_ASSEMBLING) call fatal_internal( &
          'skyline solver: store_base needs assembled values (call it before factorize)', &
-         'skyline_solver.f90', 300)
+         'skyline_solver.f90', __LINE__)
       this%base = this%a
       this%base_outside = this%n_outside
       this%base_first_outside = this%first_outside
@@ -198,7 +198,7 @@ contains
    subroutine skyline_restore_base(this)
       class(skyline_solver_t), intent(inout) :: this
       if (.not. allocated(this%base) .or. this%state == ST_EMPTY) call fatal_internal( &
-         'skyline solver: restore_base without store_base', 'skyline_solver.f90', 311)
+         'skyline solver: restore_base without store_base', 'skyline_solver.f90', __LINE__)
       this%a(:) = this%base(:)
       this%n_outside = this%base_outside
       this%first_outside = this%base_first_outside

@@ -248,7 +248,7 @@ contains
    subroutine umf_zero(this)
       class(umfpack_solver_t), intent(inout) :: this
       if (this%state == ST_EMPTY) &
-         call fatal_internal('umfpack solver: zero called before analyse', 'umfpack_solver.f90', 250)
+         call fatal_internal('umfpack solver: zero called before analyse', 'umfpack_solver.f90', __LINE__)
       call drop_numeric(this)
       this%ax = 0.0_c_double
       this%n_outside = 0
@@ -270,7 +270,7 @@ contains
       real(dp), intent(in) :: ke(:, :)    !! element matrix, size(ieq) square, symmetric
       integer :: ia, ib, i, j, nd, p
 
-      call this%check_element(ieq, ke, 'umfpack_solver.f90', 273)
+      call this%check_element(ieq, ke, 'umfpack_solver.f90', __LINE__)
       nd = size(ieq)
       do ib = 1, nd
          j = ieq(ib)
@@ -325,7 +325,7 @@ contains
       class(umfpack_solver_t), intent(inout) :: this
       if (this%state /= ST_ASSEMBLING) call fatal_internal( &
          'umfpack solver: store_base needs assembled values (call it before factorize)', &
-         'umfpack_solver.f90', 326)
+         'umfpack_solver.f90', __LINE__)
       this%base = this%ax
       this%base_outside = this%n_outside
       this%base_first_outside = this%first_outside
@@ -337,7 +337,7 @@ contains
    subroutine umf_restore_base(this)
       class(umfpack_solver_t), intent(inout) :: this
       if (.not. allocated(this%base) .or. this%state == ST_EMPTY) call fatal_internal( &
-         'umfpack solver: restore_base without store_base', 'umfpack_solver.f90', 339)
+         'umfpack solver: restore_base without store_base', 'umfpack_solver.f90', __LINE__)
       call drop_numeric(this)
       this%ax(:) = this%base(:)
       this%n_outside = this%base_outside
