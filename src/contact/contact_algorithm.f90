@@ -722,7 +722,11 @@ contains
       ! its elastic stiffness K_T^e in the solve as a regularising spring that carries no force
       ! (F_T is the law's: 0, or mu F_n): with K_T = 0 a body held only by such pairs has no
       ! tangential or rotational support once few of them touch, and the solve stops on a zero pivot
-      if (unloaded .or. (md%tstate == TS_SLIP .and. md%on_unloading .and. fn <= 1.0e-3_dp*s%fn)) md%kt = md%kte
+      if (unloaded .or. (md%tstate == TS_SLIP .and. md%on_unloading .and. fn <= 1.0e-3_dp*s%fn)) then
+         md%kt = md%kte
+      else
+         call set_kt(ifc, md)
+      end if
    end subroutine tangential_return
 
    !> EXPLICIT (the paper): F_T = F_T,prev + K_T dU_T with the stiffness of the
