@@ -47,7 +47,7 @@ module incremental
                           stiffness_range, zero_fields
    use contact_types, only: UPDATE_RETURN
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, commit_increment, &
-                                law_drift, augment_multipliers, MAX_SWITCH
+                                law_drift, augment_multipliers, MAX_SWITCH, drop_regularisation
    use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
                          sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, &
                          imbalance_limit
@@ -497,6 +497,8 @@ contains
       maxit = 1
       if (an%has_contact) maxit = an%maxrep
       do iter = 1, maxit
+         ! half the solutions spent: the modes' own stiffnesses for the rest (no regularising springs)
+         if (an%has_contact .and. iter == maxit/2 + 1) call drop_regularisation(m%contact, st, need_matrix)
          if (need_matrix) then
             call set_system(an, m, st, status)
             if (.not. status%ok()) return
