@@ -71,7 +71,7 @@ module contact_algorithm
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
              pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
-             start_force_normal, frozen_pairs, tangential_drift
+             start_force_normal, frozen_pairs, tangential_drift, drop_regularisation
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: MAX_SWITCH
 
@@ -143,6 +143,8 @@ module contact_algorithm
       real(dp) :: p_incr = 0.0_dp                 !! RETURN: pressure the increment is expected to bring
                                                   !! (contact_start's increment_pressure; 0: none)
       logical :: chatter = .false.                !! a pair exhausted its mode changes
+      logical :: regularise = .true.              !! RETURN: a pair slipping at vanishing normal force keeps
+                                                  !! K_T^e (vanishing_slip_kt) until drop_regularisation
       ! ideal contact (augmented Lagrangian)
       logical :: has_ideal = .false.              !! some interface is IDEAL
       logical :: has_rough = .false.              !! some interface is ROUGH
@@ -287,6 +289,7 @@ contains
       st%augmentations = 0
       st%violation = 0.0_dp
       st%coulomb = .false.
+      st%regularise = .true.
       do j = 1, size(st%s)
          associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             md = pair_mode_t()
@@ -656,6 +659,10 @@ contains
             if (md%closed .and. ifc%friction /= FRICTION_NONE) then
                if (returning) then
                   call tangential_return(ifc, s, md, pr%area, dut, fn, may_switch, ft, changed(j), st%chatter)
+                  ! the stiffness of the mode (no regularising value left from an earlier
+                  ! solution), or the secant tangential_return gave a cycling pair
+                  if (.not. md%tstable) call set_kt(ifc, md)
+                  if (st%regularise) call vanishing_slip_kt(s, md, fn)
                else
                   call tangential_explicit(ifc, s, md, dut, fn, may_switch, ft, changed(j), st%chatter)
                end if
@@ -786,6 +793,44 @@ contains
       integer, intent(in) :: tstate, tsign
       b = 2**(3*tstate + tsign + 1)
    end function tstate_bit
+
+   !> The increment has not converged in half its solutions with the regularising
+   !! springs of vanishing slip: for the rest of it every pair has the stiffness of
+   !! its mode (K_T = 0 in slip), so that a solution can release pairs whose normal
+   !! stiffness is far below K_T^e (the regularising springs, carrying no force,
+   !! would absorb the step).  `changed` is set when some stiffness changed (the
+   !! system is to be factorized again), else left as it is.
+   pure subroutine drop_regularisation(cdef, st, changed)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      logical, intent(inout) :: changed
+      integer :: j
+      real(dp) :: kt0
+      if (.not. st%regularise .or. cdef%opts%update /= UPDATE_RETURN) return
+      st%regularise = .false.
+      do j = 1, size(st%s)
+         associate (ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            ! (a pair whose tangential states cycle keeps its secant, within [0.05, 1] K_T^e)
+            if (ifc%law /= LAW_ROUGH .or. st%md(j)%tstable) cycle
+            kt0 = st%md(j)%kt
+            call set_kt(ifc, st%md(j))
+            if (abs(st%md(j)%kt - kt0) > 0.0_dp) changed = .true.
+         end associate
+      end do
+   end subroutine drop_regularisation
+
+   !> K_T of a closed rough pair (set by its mode before), except that a pair slipping on its
+   !! unloading branch at a normal force fn of at most 1e-3 of its committed force
+   !! (at zero force included: its friction hold vanishing with the load) gets
+   !! K_T^e, a regularising spring that carries no force (F_T is the law's, mu F_n
+   !! or 0): with K_T = 0 a body held only by such pairs (and one restraint) has no
+   !! tangential or rotational support once one of them is left touching.
+   pure subroutine vanishing_slip_kt(s, md, fn)
+      type(pair_state_t), intent(in) :: s
+      type(pair_mode_t), intent(inout) :: md
+      real(dp), intent(in) :: fn
+      if (md%closed .and. md%tstate == TS_SLIP .and. md%on_unloading .and. fn <= 1.0e-3_dp*s%fn) md%kt = md%kte
+   end subroutine vanishing_slip_kt
 
    !> EXPLICIT (the paper): F_T = F_T,prev + K_T dU_T with the stiffness of the
    !! assumed state for the whole increment (eqs. 4.15-4.18).  The paper's

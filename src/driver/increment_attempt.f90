@@ -16,7 +16,8 @@ module increment_attempt
    use assembly, only: coupling_t, load_increment
    use contact_assembly, only: contact_springs_t
    use contact_types, only: contact_options_t, contact_pair_t
-   use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, augment_multipliers
+   use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, augment_multipliers, &
+                                drop_regularisation
    use contact_start, only: increment_pressure
    use model, only: model_t
    use step_audit, only: check_finite_springs
@@ -231,6 +232,8 @@ contains
       maxit = 1
       if (an%has_contact) maxit = an%maxrep
       do iter = 1, maxit
+         ! half the solutions spent: the modes' own stiffnesses for the rest (no regularising springs)
+         if (an%has_contact .and. iter == maxit/2 + 1) call drop_regularisation(m%contact, st, need_matrix)
          if (need_matrix) then
             call set_system(an, m, st, status)
             if (.not. status%ok()) return
