@@ -12,6 +12,7 @@ program kontakt2d
    use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_ptr, c_associated
    use strings, only: upper, basename, strip_extension
    use model, only: model_t
+   use run_plan, only: solver_code, SOLVER_UNSET
    use model_input, only: read_model
    use incremental, only: run_options_t, run_result_t, run_analysis
    use version, only: K2D_VERSION
@@ -49,7 +50,7 @@ program kontakt2d
          opts%listing_path = option_value(i, arg)
       case ('-s', '--solver')
          opts%solver_name = upper(option_value(i, arg))
-         if (all(opts%solver_name /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'DENSE', 'MUMPS'])) then
+         if (solver_code(opts%solver_name) == SOLVER_UNSET) then
             call usage_error('--solver expects skyline, umfpack, mumps or dense, found "'//get_arg(i)//'"')
          end if
       case ('-q', '--quiet')

@@ -10,10 +10,11 @@
 module equation_numbering
    use kinds, only: dp, i8
    use errors, only: status_t
-   use strings, only: itoa, rtoa, upper
+   use strings, only: itoa, rtoa
+   use run_plan, only: run_plan_t, ORDERING_RCM, ordering_name
    use model, only: model_t
    use dof_map, only: dof_map_t, build_dof_map
-   use renumber, only: rcm_order, RENUMBER_AUTO, RENUMBER_RCM, RENUMBER_NONE
+   use renumber, only: rcm_order, RENUMBER_NONE
    use graph, only: build_node_graph, build_equation_graph, graph_profile
    implicit none
    private
@@ -34,10 +35,10 @@ module equation_numbering
 
 contains
 
-   !> Choose the node order, number the equations and build the equation graph.
-   subroutine number_equations(m, solver_name, links, map, xadj, adjncy, rep, status, ties)
+   !> Number the equations in the plan's order and build the equation graph.
+   subroutine number_equations(m, plan, links, map, xadj, adjncy, rep, status, ties)
       type(model_t), intent(in) :: m
-      character(len=*), intent(in) :: solver_name   !! solver in use (case-insensitive)
+      type(run_plan_t), intent(in) :: plan          !! its ordering (RCM or the user's) and why
       integer, intent(in) :: links(:, :)            !! (2, nlink) extra node couplings (contact pairs, ties)
       type(dof_map_t), intent(out) :: map
       integer, allocatable, intent(out) :: xadj(:), adjncy(:)   !! equation graph (CSR, 1-based)
@@ -46,31 +47,10 @@ contains
       integer, intent(in), optional :: ties(:, :)   !! (3, ntie) master, slave, dof: passed to build_dof_map
       integer, allocatable :: order(:), nxadj(:), nadj(:), x0(:), a0(:)
       type(dof_map_t) :: map0
-      character(len=:), allocatable :: choice
       integer :: ip
 
-      choice = RENUMBER_AUTO
-      if (allocated(m%renumber)) then
-         if (len_trim(m%renumber) > 0) choice = upper(trim(m%renumber))
-      end if
-      select case (choice)
-      case (RENUMBER_RCM)
-         rep%method = RENUMBER_RCM
-         rep%reason = 'OPTIONS RENUMBER RCM'
-      case (RENUMBER_NONE)
-         rep%method = RENUMBER_NONE
-         rep%reason = 'OPTIONS RENUMBER NONE'
-      case default
-         if (upper(trim(adjustl(solver_name))) == 'SKYLINE') then
-            rep%method = RENUMBER_RCM
-            rep%reason = 'default for the skyline solver'
-         else
-            rep%method = RENUMBER_NONE
-            rep%reason = 'default for the '//trim(adjustl(solver_name))//' solver'
-            if (upper(trim(adjustl(solver_name))) == 'UMFPACK') &
-               rep%reason = 'default for UMFPACK, which orders the matrix itself'
-         end if
-      end select
+      rep%method = ordering_name(plan%ordering)
+      rep%reason = plan%ordering_reason
 
       call build_node_graph(m, links, nxadj, nadj)
       allocate (order(m%npoin))
@@ -83,7 +63,7 @@ contains
       call build_equation_graph(map0, nxadj, nadj, x0, a0)
       call graph_profile(map0%neq, x0, a0, rep%profile_before, rep%mean_before, rep%max_before, status)
       if (.not. status%ok()) return
-      if (rep%method == RENUMBER_NONE) then
+      if (plan%ordering /= ORDERING_RCM) then
          map = map0
          call move_alloc(x0, xadj)
          call move_alloc(a0, adjncy)

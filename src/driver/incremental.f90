@@ -33,19 +33,19 @@
 module incremental
    use kinds, only: dp, i8, stdout, stderr
    use errors, only: status_t, STAT_INPUT, STAT_NO_CONVERGENCE
-   use strings, only: itoa, rtoa, strip_extension, basename, upper
+   use strings, only: itoa, rtoa, strip_extension, basename
    use model, only: model_t, NTYPE_AXISYMMETRIC, complete_model, model_complete
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, STEP_CONVERGED, &
                       STEP_UNSETTLED
    use equation_numbering, only: numbering_report_t, number_equations, write_numbering_report
-   use solver_factory, only: create_solver, choose_solver
+   use solver_factory, only: create_solver, plan_run
    use contact_system, only: contact_equations
-   use contact_system_factory, only: create_contact_system
+   use contact_system_factory, only: create_contact_system, contact_system_kind
+   use run_plan, only: run_plan_t, CHOICE_AUTOMATIC, SCHEME_INCREMENTAL, SCHEME_MODIFIED
    use assembly, only: assemble_bodies, assemble_load_cases
    use contact_assembly, only: pair_links, spring_nodal_forces
    use body_fields, only: recover_stresses, update_reactions, number_bodies, body_imbalance, &
                           stiffness_range, zero_fields, estimate_error
-   use contact_types, only: UPDATE_RETURN
    use contact_algorithm, only: contact_state_t, commit_increment, law_drift, MAX_SWITCH, tangential_drift
    use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
                          sliding_warning, run_history_t, IMBALANCE_NOT_COMPUTED, &
@@ -127,16 +127,17 @@ contains
       type(outputs_t) :: out
       type(numbering_report_t) :: numbering
       type(status_t) :: ostat
-      character(len=:), allocatable :: solver_name, auto_reason
+      type(run_plan_t) :: plan
+      character(len=:), allocatable :: solver_name
 
       call system_clock(out%t0, out%rate)
-      solver_name = m%solver_name
+      ! the run plan, resolved once: -s, else the deck's SOLVER, else (AUTO) from the model's size
+      ! and contact; the order of the equations, the scheme (the contact system in set_up)
       if (allocated(opts%solver_name)) then
-         if (len(opts%solver_name) > 0) solver_name = opts%solver_name
+         call plan_run(m, opts%solver_name, plan, solver_name)
+      else
+         call plan_run(m, '', plan, solver_name)
       end if
-      ! no SOLVER in the deck (or AUTO) and no -s: from the model's size and contact
-      if (upper(trim(adjustl(solver_name))) == 'AUTO') &
-         call choose_solver(2*m%npoin, size(m%contact%pairs) > 0, solver_name, auto_reason)
       res%results_path = strip_extension(basename(m%deck_file))//'.h5'
       if (allocated(opts%results_path)) then
          if (len(opts%results_path) > 0) res%results_path = opts%results_path
@@ -148,9 +149,10 @@ contains
       out%lis_level = m%listing_level
       out%quiet = opts%quiet
 
-      call set_up(m, solver_name, an, numbering, status)
-      if (allocated(auto_reason)) numbering%solver_choice = solver_name//', chosen automatically ('//auto_reason//')'
-      if (status%ok()) call start_run(m, an, res, status)
+      call set_up(m, solver_name, plan, an, numbering, status)
+      if (plan%solver_choice == CHOICE_AUTOMATIC) &
+         numbering%solver_choice = solver_name//', chosen automatically ('//plan%solver_reason//')'
+      if (status%ok()) call start_run(m, plan, an, res, status)
       if (status%ok()) then
          call open_outputs(m, numbering, res, out, status)
          if (status%ok()) then
@@ -162,7 +164,7 @@ contains
          ! keeps the mesh and says why (the listing and terminal too)
          out%set_up_failed = .true.
          if (.not. allocated(numbering%method)) numbering = numbering_report_t(method='NONE', reason='not reached')
-         if (.not. allocated(res%info%solver)) res%info = run_info_t(solver=solver_name, system='', &
+         if (.not. allocated(res%info%solver)) res%info = run_info_t(plan=plan, solver=solver_name, system='', &
                                        npair=an%npair, returning=an%returning, modified=an%modified)
          call zero_fields(m, res%body_fields_t)
          call open_outputs(m, numbering, res, out, ostat)
@@ -174,9 +176,10 @@ contains
 
    !> Equations, solver, K_AB and the load vectors; the contact pairs'
    !! equations; the choice of the contact system.
-   subroutine set_up(m, solver_name, an, numbering, status)
+   subroutine set_up(m, solver_name, plan, an, numbering, status)
       type(model_t), intent(in) :: m
-      character(len=*), intent(in) :: solver_name
+      character(len=*), intent(in) :: solver_name   !! the plan's solver as named (create_solver refuses a bad one)
+      type(run_plan_t), intent(inout) :: plan       !! gets its contact system
       type(analysis_t), intent(inout) :: an
       type(numbering_report_t), intent(out) :: numbering
       type(status_t), intent(inout) :: status
@@ -184,13 +187,13 @@ contains
 
       an%npair = size(m%contact%pairs)
       an%has_contact = an%npair > 0
-      an%returning = m%contact%opts%update == UPDATE_RETURN
-      an%modified = an%returning .and. m%contact%opts%modified
+      an%returning = plan%scheme /= SCHEME_INCREMENTAL
+      an%modified = plan%scheme == SCHEME_MODIFIED
 
       ! equations (ties share equations; RCM order for the skyline solver), pattern
       ! with every contact pair, K_AB
       call pair_links(m%contact%pairs, links)
-      call number_equations(m, solver_name, links, an%map, xadj, adjncy, numbering, status, ties=m%ties)
+      call number_equations(m, plan, links, an%map, xadj, adjncy, numbering, status, ties=m%ties)
       if (.not. status%ok()) return
       call create_solver(solver_name, an%solver, status)
       if (.not. status%ok()) then
@@ -210,18 +213,16 @@ contains
       an%restrained = an%map%id < 0
       call an%springs%init(an%map, m%contact%pairs)
       an%spacing = pair_spacing(m%contact%pairs)
-      if (an%has_contact) then
-         call create_contact_system(m%condense, an%npair, size(contact_equations(an%springs%peq, an%map%neq)), an%sys, &
-                                    an%solver)
-      else
-         call create_contact_system('OFF', 0, 0, an%sys)
-      end if
+      if (an%has_contact) plan%contact_system = contact_system_kind(plan%condense, an%npair, &
+                                                  size(contact_equations(an%springs%peq, an%map%neq)), an%solver)
+      call create_contact_system(plan%contact_system, an%sys)
    end subroutine set_up
 
    !> Initial contact states, the cap on solutions, the bodies, the start
    !! pressure, the contact system, the Gauss-point layout, the run information.
-   subroutine start_run(m, an, res, status)
+   subroutine start_run(m, plan, an, res, status)
       type(model_t), intent(in) :: m
+      type(run_plan_t), intent(in) :: plan
       type(analysis_t), intent(inout) :: an
       type(run_result_t), intent(inout) :: res
       type(status_t), intent(inout) :: status
@@ -252,7 +253,7 @@ contains
       if (.not. status%ok()) return
       res%restrained = an%restrained
       ! what the run uses, for the headers and the result file
-      res%info = run_info_t(solver=an%sys%solver%name(), system=an%sys%describe(), returning=an%returning, &
+      res%info = run_info_t(plan=plan, solver=an%sys%solver%name(), system=an%sys%describe(), returning=an%returning, &
                             modified=an%modified, neq=an%map%neq, nres=an%map%nres, npair=an%npair, &
                             condensed=an%sys%condensed, system_bytes=an%sys%memory_bytes(), max_repeats=an%maxrep, &
                             autoinc=m%autoinc, autoinc_min=m%autoinc_min, autoinc_easy=m%autoinc_easy, &

@@ -17,6 +17,7 @@ module listing
    use model, only: model_t, ntype_name
    use contact_types, only: contact_def_t, units_name, LAW_ROUGH, UNITS_KGF_UM, UNITS_MODEL, MATCH_SEGMENT, &
                             KGF_PER_NMM2
+   use run_plan, only: plan_summary
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, NS_OPEN, &
                       NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP, MAX_DOUBT_LINES
    implicit none
@@ -82,7 +83,7 @@ contains
             ' bytes reached the disk (is it full?)'
    end function shortfall
 
-   !> Program banner and the control data.
+   !> Program banner, the control data and the run plan.
    subroutine list_header(u, m, info)
       integer, intent(in) :: u
       type(model_t), intent(in) :: m
@@ -99,6 +100,7 @@ contains
          '   load cases: ', m%ncase
       write (u, '(a,i0)') ' Increments   : ', m%nincs
       write (u, '(a)') ' Solver       : '//info%solver
+      write (u, '(a)') ' Run plan     : '//plan_summary(info%plan)
       call list_interfaces(u, m%contact)
    end subroutine list_header
 

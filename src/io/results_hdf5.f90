@@ -70,6 +70,7 @@ module results_hdf5
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t
+   use run_plan, only: solver_name, choice_name, system_name, ordering_name, scheme_name, CHOICE_AUTOMATIC
    use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, law_name, &
                             matching_name, rigid_shape_name, MAX_PAIR_NODES
    use version, only: K2D_VERSION
@@ -553,16 +554,27 @@ contains
       n = this%ncompleted
    end function results_increments_completed
 
-   !> Root attributes of the run: the bounds of the automatic increments
-   !! (with the increments' `cuts` their history), whether the bodies were
-   !! condensed onto the contact equations and, for a contact model, the cap
-   !! on solutions per increment the run used.
+   !> Root attributes of the run: its plan (the solver, who chose it and
+   !! why, the contact system, the order of the equations, the contact
+   !! scheme), the bounds of the automatic increments (with the increments'
+   !! `cuts` their history), whether the bodies were condensed onto the
+   !! contact equations and, for a contact model, the cap on solutions per
+   !! increment the run used.
    subroutine results_run_info(this, info, status)
       class(results_file_t), intent(inout) :: this
       type(run_info_t), intent(in) :: info
       type(status_t), intent(inout) :: status
       integer :: err
       err = 0
+      associate (p => info%plan)
+         call attr_string(this%fid, 'solver', solver_name(p%solver), err)
+         call attr_string(this%fid, 'solver_choice', choice_name(p%solver_choice), err)
+         if (p%solver_choice == CHOICE_AUTOMATIC .and. allocated(p%solver_reason)) &
+            call attr_string(this%fid, 'solver_reason', p%solver_reason, err)
+         call attr_string(this%fid, 'contact_system', system_name(p%contact_system), err)
+         call attr_string(this%fid, 'ordering', ordering_name(p%ordering), err)
+         call attr_string(this%fid, 'scheme', scheme_name(p%scheme), err)
+      end associate
       call attr_int(this%fid, 'autoinc', merge(1, 0, info%autoinc), err)
       call attr_real0(this%fid, 'autoinc_min_fraction', info%autoinc_min, err)
       call attr_int(this%fid, 'autoinc_easy_solutions', info%autoinc_easy, err)

@@ -12,8 +12,8 @@
 !!
 !! Life cycle of one run:
 !!
-!!     run_info_t        once, after the set-up (what the run uses: solver,
-!!                       contact system, caps, automatic increments)
+!!     run_info_t        once, after the set-up (what the run uses: the run
+!!                       plan, contact system, caps, automatic increments)
 !!     body_fields_t     Gauss-point layout once, then every accepted step
 !!     contact_fields_t  every accepted step (contact models)
 !!     step_record_t     every accepted step
@@ -23,6 +23,7 @@
 !!                       "completed"
 module records
    use kinds, only: dp, i8
+   use run_plan, only: run_plan_t
    implicit none
    private
 
@@ -134,6 +135,8 @@ module records
    !> What a run uses, for the header of the listing and the terminal and the
    !! root attributes of the result file (the model is not written back).
    type :: run_info_t
+      type(run_plan_t) :: plan                      !! how the run solves: solver and why, contact system,
+                                                    !! order of the equations, scheme (module run_plan)
       character(len=:), allocatable :: solver       !! name of the linear solver of the bodies
       character(len=:), allocatable :: system       !! the contact system's line ('' for the full system)
       logical :: returning = .false.                !! contact scheme: RETURN update (Newton) ...

@@ -26,7 +26,7 @@
 !! CMake defines KONTAKT2D_HAVE_MUMPS.
 module contact_system_factory
    use kinds, only: dp
-   use strings, only: upper
+   use run_plan, only: CONDENSE_ON, CONDENSE_OFF, SYSTEM_FULL, SYSTEM_CONDENSED, SYSTEM_MUMPS_SCHUR
    use linear_solver, only: linear_solver_t
    use contact_system, only: contact_system_t
    use full_system, only: full_system_t
@@ -37,7 +37,7 @@ module contact_system_factory
 #endif
    implicit none
    private
-   public :: create_contact_system, schur_pays, AUTO_MAX_CONTACT_EQUATIONS
+   public :: create_contact_system, contact_system_kind, schur_pays, AUTO_MAX_CONTACT_EQUATIONS
 
    !> CONDENSE AUTO condenses up to this many contact equations (the dense
    !! system of the contact equations grows as n_c^2 in memory, n_c^3 in work).
@@ -53,19 +53,15 @@ module contact_system_factory
    real(dp), parameter :: T_SPARSE = 0.016_dp, SPARSE_EXPONENT = 1.24_dp, SOLVE_SHARE = 0.2_dp, &
                           T_DENSE = 0.008_dp
 
-   !> Kinds of contact system.
-   integer, parameter :: FULL = 0, CONDENSED = 1, SCHUR = 2
-
 contains
 
-   !> The contact system for OPTIONS CONDENSE `condense` (ON, OFF or AUTO,
-   !! case-insensitive; anything else is AUTO) and the bodies' solver (when
-   !! given: the MUMPS solver condenses through its Schur complement).
-   subroutine create_contact_system(condense, npair, nc, sys, solver)
-      character(len=*), intent(in) :: condense
-      integer, intent(in) :: npair            !! contact pairs
-      integer, intent(in) :: nc               !! contact equations (distinct free equations of the pairs)
-      class(contact_system_t), allocatable, intent(out) :: sys
+   !> The contact system (SYSTEM_* of run_plan, for `run_plan_t%contact_system`)
+   !! for OPTIONS CONDENSE `condense` (CONDENSE_*) and the bodies' solver
+   !! (when given: the MUMPS solver condenses through its Schur complement).
+   function contact_system_kind(condense, npair, nc, solver) result(kind)
+      integer, intent(in) :: condense          !! CONDENSE_AUTO, CONDENSE_ON or CONDENSE_OFF
+      integer, intent(in) :: npair             !! contact pairs
+      integer, intent(in) :: nc                !! contact equations (distinct free equations of the pairs)
       class(linear_solver_t), intent(in), optional :: solver   !! the bodies' solver, analysed (neq known)
       integer :: kind, neq
       logical :: mumps
@@ -80,26 +76,32 @@ contains
          end select
       end if
 #endif
-      kind = FULL
+      kind = SYSTEM_FULL
       if (npair > 0) then
-         select case (upper(trim(adjustl(condense))))
-         case ('ON')
-            kind = merge(SCHUR, CONDENSED, mumps)
-         case ('OFF')
-            kind = FULL
+         select case (condense)
+         case (CONDENSE_ON)
+            kind = merge(SYSTEM_MUMPS_SCHUR, SYSTEM_CONDENSED, mumps)
+         case (CONDENSE_OFF)
+            kind = SYSTEM_FULL
          case default
             if (nc <= AUTO_MAX_CONTACT_EQUATIONS) then
-               kind = CONDENSED
-               if (mumps) kind = merge(SCHUR, FULL, schur_pays(neq, nc))
+               kind = SYSTEM_CONDENSED
+               if (mumps) kind = merge(SYSTEM_MUMPS_SCHUR, SYSTEM_FULL, schur_pays(neq, nc))
             end if
          end select
       end if
+   end function contact_system_kind
+
+   !> The contact system of kind `kind` (SYSTEM_*, from contact_system_kind).
+   subroutine create_contact_system(kind, sys)
+      integer, intent(in) :: kind
+      class(contact_system_t), allocatable, intent(out) :: sys
       select case (kind)
 #ifdef KONTAKT2D_HAVE_MUMPS
-      case (SCHUR)
+      case (SYSTEM_MUMPS_SCHUR)
          allocate (mumps_schur_system_t :: sys)
 #endif
-      case (CONDENSED)
+      case (SYSTEM_CONDENSED)
          allocate (condensed_system_t :: sys)
       case default
          allocate (full_system_t :: sys)

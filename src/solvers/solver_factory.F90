@@ -34,10 +34,14 @@ module solver_factory
 #endif
    use parallel, only: process_count
    use strings, only: itoa
+   use model, only: model_t
+   use contact_types, only: UPDATE_RETURN
+   use run_plan, only: run_plan_t, solver_code, condense_code, scheme_code, resolve_ordering, CHOICE_DECK, &
+                       CHOICE_COMMAND_LINE, CHOICE_AUTOMATIC
    implicit none
    private
 
-   public :: create_solver, solver_names, choose_solver
+   public :: create_solver, solver_names, choose_solver, plan_run
    public :: AUTO_MUMPS_CONTACT_DOFS, AUTO_MUMPS_DOFS, AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS
 
    !> Crossovers of the automatic choice (DOFs = 2 per node, before the
@@ -52,6 +56,51 @@ module solver_factory
    integer, parameter :: AUTO_UMFPACK_DOFS = 30000          !! no contact: UMFPACK faster from 3e4 equations
 
 contains
+
+   !> The run plan of model `m` and the command line's solver `cli_solver`
+   !! ('' = the deck's), all but the contact system (contact_system_kind
+   !! chooses it once the equations are numbered): the solver named by -s,
+   !! else by the deck's CONTROL SOLVER, else (blank or AUTO) `choose_solver`'s
+   !! from the model's size and contact; the order of the equations; the
+   !! contact scheme, OPTIONS CONDENSE and the automatic increments.  A name
+   !! that is no solver is kept as the deck's choice with SOLVER_UNSET, for
+   !! `create_solver` to refuse by its name.
+   subroutine plan_run(m, cli_solver, plan, name)
+      type(model_t), intent(in) :: m
+      character(len=*), intent(in) :: cli_solver
+      type(run_plan_t), intent(out) :: plan
+      character(len=:), allocatable, intent(out) :: name   !! the solver's name as given (for create_solver)
+      character(len=:), allocatable :: reason
+      integer :: npair
+      logical :: returning
+      name = 'AUTO'
+      if (allocated(m%solver_name)) name = m%solver_name
+      plan%solver_choice = CHOICE_DECK
+      if (len_trim(cli_solver) > 0) then
+         name = cli_solver
+         plan%solver_choice = CHOICE_COMMAND_LINE
+      end if
+      npair = 0
+      if (allocated(m%contact%pairs)) npair = size(m%contact%pairs)
+      if (lowercase(trim(adjustl(name))) == 'auto' .or. len_trim(name) == 0) then
+         call choose_solver(2*m%npoin, npair > 0, name, reason)
+         plan%solver_choice = CHOICE_AUTOMATIC
+         plan%solver_reason = reason
+      else
+         plan%solver_reason = ''
+      end if
+      plan%solver = solver_code(name)
+      if (allocated(m%renumber)) then
+         call resolve_ordering(m%renumber, plan%solver, plan%ordering, plan%ordering_reason)
+      else
+         call resolve_ordering('AUTO', plan%solver, plan%ordering, plan%ordering_reason)
+      end if
+      plan%condense = condense_code('AUTO')
+      if (allocated(m%condense)) plan%condense = condense_code(m%condense)
+      returning = m%contact%opts%update == UPDATE_RETURN
+      plan%scheme = scheme_code(npair, returning, returning .and. m%contact%opts%modified)
+      plan%autoinc = m%autoinc
+   end subroutine plan_run
 
    !> Allocate the solver named `name` (case and surrounding blanks ignored).
    !!
