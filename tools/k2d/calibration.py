@@ -30,8 +30,7 @@ import math
 
 import numpy as np
 
-
-KGF_CM2 = 0.0980665            # N/mm2 per kgf/cm2 (SPEC §1)
+from k2d.laws import KGF_CM2, unloading_closure, virgin_closure
 
 # unit name (lower case) -> value in mm, N/mm2
 LENGTH_UNITS = {"um": 1.0e-3, "µm": 1.0e-3, "μm": 1.0e-3, "micron": 1.0e-3, "mm": 1.0}
@@ -463,8 +462,7 @@ def card_values(line):
 
 
 # ---------------------------------------------------------------------------- normal law
-def virgin(p, c, m):
-    return c * np.maximum(p, 0.0) ** m
+virgin = virgin_closure        # u = c_n p^m (k2d.laws)
 
 
 def normal_history(p):
@@ -501,7 +499,9 @@ def normal_closure(p, rev, c, m, c2, m2):
     on = rev >= 0
     if np.any(on):
         pa = p[rev[on]]
-        u[on] = c * pa ** m - c2 * (pa ** m2 - np.maximum(p[on], 0.0) ** m2)
+        # the bare branch (clamp=False): the fit holds (c2, m2) admissible by its parametrization,
+        # and the unloading-only fit (unloading_free) reports what the data say, admissible or not
+        u[on] = unloading_closure(p[on], virgin_closure(pa, c, m), pa, c2, m2, clamp=False)
     return u
 
 
@@ -718,7 +718,7 @@ def _fit_cycles(fit, p, u, rev, sig, c0, m0, same_exponent):
     fit.loading_only = False
     fit.reversal_pressures = pa
     for a in sorted(set(int(a) for a in rev[rev >= 0])):
-        ures = c * p[a] ** m - c2 * p[a] ** m2
+        ures = virgin_closure(p[a], c, m) - c2 * p[a] ** m2     # the fit's bare u_res (may be < 0)
         fit.notes.append("reversal at p_A = %s %s (line %d): residual closure after unloading %.4g %s"
                          % (_fmt(p[a]), fit.units.pressure_name, fit.lines[a], ures, fit.units.length_name))
     if abs(m2 - m) > 1e-9 * m:

@@ -25,6 +25,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import laws  # noqa: E402
 from .history import History, law_curves, unit_labels  # noqa: E402
 from .results import Result  # noqa: E402
 
@@ -278,6 +279,6 @@ def residual_after(h, a, b):
             continue
         cn2, m2 = (float(v) for v in np.atleast_1d(law["normal_model"])[2:4])
         # max(u_res, 0): beyond the law's admissible range p* (docs/contact.md)
-        r = max(ua[j] - cn2 * pa[j] ** m2, 0.0)
+        r = laws.residual_closure(ua[j], pa[j], cn2, m2)
         best = r if np.isnan(best) else max(best, r)
     return best

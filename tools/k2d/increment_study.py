@@ -18,6 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import laws  # noqa: E402
 from .build import ROOT  # noqa: E402
 from .results import Result  # noqa: E402
 from .tables import write_csv as write_csv_table  # noqa: E402
@@ -28,7 +29,7 @@ CASES = {
 }
 COUNTS = [2, 3, 5, 10, 20, 40, 80]
 SCHEMES = ["INCREMENTAL", "INCREMENTAL+ITERATE", "NEWTON"]
-KGF = 1.0 / 0.0980665
+KGF = laws.KGF_PER_NMM2
 
 
 def make_deck(base, n, scheme, path):

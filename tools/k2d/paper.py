@@ -20,6 +20,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from . import examples as ex  # noqa: E402
+from . import laws  # noqa: E402
 from .analysis import Pairs, at, contact_radius, rel  # noqa: E402
 from .batch import run_decks  # noqa: E402
 from .published import TABLE1, TABLE1_LABEL, TABLE1_X, TABLE2_Q8, TABLE2_Q8B, TABLE2_T3  # noqa: E402
@@ -287,9 +288,8 @@ def example_51(out, md):
         j = np.where(closed[imax:])[0] + imax
         ax.plot(p[j], u[j], ".-", color=col, ms=3, label="unloading, c_n2 = %g" % cn2)
         # the residual closure of the unloading branch at the reversal point A
-        f = ex.KGF
         ua, pa = u[imax], p[imax]
-        ures = ua - cn2 * (f * pa) ** 0.5
+        ures = laws.residual_closure(ua, ex.KGF * pa, cn2, 0.5)     # um, kgf/cm2
         ax.plot([p[j[-1]], 0.0], [u[j[-1]], ures], ":", color=col)
         ax.plot([0.0], [ures], "o", color=col)
         ax.annotate("B (c_n2 = %g): %.2f um" % (cn2, ures), (0.0, ures), xytext=(0.25, ures - 0.35), fontsize=8,
@@ -298,7 +298,7 @@ def example_51(out, md):
             rows.append([cn2, i + 1, lam[i], p[i], u[i], int(ns[i])])
         rows.append([cn2, "B", 0.0, 0.0, ures, 0])
     pp = np.linspace(0.0, 2.3, 200)
-    ax.plot(pp, 1.0 * (ex.KGF * pp) ** 0.5, "--", color="0.5", lw=1, label="virgin curve u = c_n p^m (exact)")
+    ax.plot(pp, laws.virgin_closure(ex.KGF * pp, 1.0, 0.5), "--", color="0.5", lw=1, label="virgin curve u = c_n p^m (exact)")
     ax.set_xlabel("normal pressure p_n at the punch edge [N/mm2]")
     ax.set_ylabel("closure u_n [um]")
     ax.grid(alpha=0.3)
