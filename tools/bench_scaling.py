@@ -60,7 +60,6 @@ import argparse
 import csv
 import math
 import os
-import re
 import subprocess
 import sys
 import time
@@ -71,8 +70,9 @@ sys.path.insert(0, HERE)
 import numpy as np  # noqa: E402
 
 from k2d.build import ROOT, build_target, find_or_build  # noqa: E402
-from k2d.deck import f10  # noqa: E402
+from k2d.deck import SOLVERS, f10  # noqa: E402
 from k2d.results import Result  # noqa: E402
+from k2d.terminal import progress_solutions, read_terminal  # noqa: E402
 
 SIZES = ["1e4", "3e4", "1e5", "3e5", "1e6"]
 PATHS = ["skyline:off", "skyline:on", "umfpack:off", "umfpack:on", "mumps:off", "mumps:on"]
@@ -222,19 +222,13 @@ def make_mesh(out, name, target):
     return msh, got
 
 
-PROGRESS = re.compile(r"^\s+(\d+)\s+[0-9.]+\s+\S+\s+\d+\s+\d+\s+(\d+)\s+\d+\s+\S+\s+[0-9.]+\s*$")
-
-
 def solutions(log):
     """Solutions of the whole run, summed over the progress lines of its terminal log (the
     result file keeps the last increment only)."""
-    n = 0
-    with open(log) as f:
-        for line in f:
-            m = PROGRESS.match(line)
-            if m:
-                n += int(m.group(2))
-    return n
+    t = read_terminal(log)
+    if t is None:
+        raise OSError("cannot read %s" % log)
+    return progress_solutions(t)
 
 
 def run(exe, deck, h5, solver, timeout):
@@ -338,7 +332,7 @@ def main():
         return report(args.out, args.plot)
     for path in args.paths:
         s, _, c = path.partition(":")
-        if s not in ("skyline", "umfpack", "mumps", "dense") or c.upper() not in ("ON", "OFF"):
+        if s not in [n.lower() for n in SOLVERS if n != "AUTO"] or c.upper() not in ("ON", "OFF"):
             raise SystemExit(f"bench_scaling: a path is SOLVER:ON or SOLVER:OFF, found {path!r}")
     os.makedirs(args.out, exist_ok=True)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")

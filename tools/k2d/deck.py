@@ -14,7 +14,19 @@ bodies that touch get coincident node pairs for the contact surfaces.
 """
 import math
 
+__all__ = ["BLOCKS", "SOLVERS", "keyword", "f10", "fine_then_graded", "graded", "Deck", "circle_y"]
+
 FMT_I = "%5d"
+# the deck's blocks, in their order (src/io/deck_reader.f90, docs/deck-format.md)
+BLOCKS = ("TITLE", "CONTROL", "OPTIONS", "MESH", "ELEMENTS", "NODES", "RESTRAINTS", "TIES", "MATERIALS",
+          "LOADS", "CONTACT", "INCREMENTS", "END")
+# CONTROL's SOLVER field (columns 36-45; blank: AUTO) and the command line's -s, in lower case there
+SOLVERS = ("SKYLINE", "UMFPACK", "MUMPS", "DENSE", "AUTO")
+
+
+def keyword(line):
+    """The keyword of a card: its first ten columns, upper case, without a comment."""
+    return line[:10].split("#")[0].strip().upper()
 
 
 def f10(x):
