@@ -18,6 +18,8 @@ import time
 from .build import run_deck
 from .terminal import program_seconds, read_terminal
 
+__all__ = ["run_parallel", "run_decks", "GNU_TIME", "run_measured", "parse_log"]
+
 
 def run_parallel(fn, items, jobs, in_order=False):
     """Call fn(item) for every item in `jobs` threads (the runs themselves are processes);

@@ -32,6 +32,13 @@ import numpy as np
 
 from k2d.laws import KGF_CM2, unloading_closure, virgin_closure
 
+__all__ = ["LENGTH_UNITS", "PRESSURE_UNITS", "RATIO_UNITS", "KIND_UNITS", "CARD_UNITS", "BRANCH_WORDS",
+           "BRANCH_NAMES", "CONFIDENCE", "UNDETERMINED", "DataError", "Units", "unit_value", "parse_model_units",
+           "Column", "Table", "read_table", "Constant", "least_squares", "jacobian", "confidence", "weights", "Fit",
+           "field", "card", "card_values", "virgin", "normal_history", "normal_closure", "unloading_bound",
+           "admissible_reversals", "read_normal", "fit_normal", "bilinear_return", "tangent_curve", "read_tangent",
+           "fit_tangent", "fredriksson", "read_friction", "fit_friction"]
+
 # unit name (lower case) -> value in mm, N/mm2
 LENGTH_UNITS = {"um": 1.0e-3, "µm": 1.0e-3, "μm": 1.0e-3, "micron": 1.0e-3, "mm": 1.0}
 PRESSURE_UNITS = {"kgf/cm2": KGF_CM2, "kgf/cm^2": KGF_CM2, "kgf/cm²": KGF_CM2, "at": KGF_CM2,

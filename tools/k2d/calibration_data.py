@@ -11,6 +11,9 @@ import numpy as np
 from k2d.calibration import LENGTH_UNITS, PRESSURE_UNITS
 from k2d.laws import KGF_CM2, unloading_closure, virgin_closure
 
+__all__ = ["SPEC_TABLE", "TABLE_PMAX", "normal_cycles", "loading_curve", "tangent_curves", "friction_curve",
+           "write_csv", "write_normal", "write_tangent", "write_friction"]
+
 # SPEC §2.4, Ito 2008 Table 6-2 (after Back et al.): cast-iron joints, C in um/(kgf/cm2)^m;
 # the ranges of the table are taken at both ends.
 SPEC_TABLE = [

@@ -32,6 +32,9 @@ from .history import History, unit_labels  # noqa: E402
 from .results import Result  # noqa: E402
 from .terminal import read_terminal  # noqa: E402
 
+__all__ = ["VARY", "CompareError", "parse_vary", "vary_deck", "run_totals", "run_figures", "pct", "ROWS",
+           "shown_path", "compare_runs"]
+
 VARY = {
     "LAW": {"ROUGH": "ROUGH", "IDEAL": "IDEAL"},
     "SCHEME": {"INCREMENTAL": "INCREMENTAL", "EXPLICIT": "INCREMENTAL", "NEWTON": "NEWTON",
@@ -122,7 +125,8 @@ def pct(a, b):
 
 
 ROWS = [("status", "status", None), ("exit code", "exit_code", None), ("increments", "increments", "%d"),
-        ("increments kept in the result file", "kept", "%d"), ("solutions (all increments)", "solutions", "%d"), ("CPU time [s]", "cpu_s", "%.3g"),
+        ("increments kept in the result file", "kept", "%d"), ("solutions (all increments)", "solutions", "%d"),
+        ("CPU time [s]", "cpu_s", "%.3g"),
         ("load factor at the end", "load_factor", "%.6g"), ("peak pressure [{stress}]", "peak_pressure", "%.6g"),
         ("contact width [{length}]", "width", "%.6g"), ("contact area [{length}²]", "area", "%.6g"),
         ("approach [{length}]", "approach", "%.6g"), ("total normal force [{force}]", "normal_force", "%.6g"),

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Write Kontakt2D decks for structured multi-block meshes.
 
 A small library used by the scripts that generate the example and test decks
@@ -291,7 +290,8 @@ class Deck:
         """Uniform pressure pn (compressive) and traction pt on the edges selected."""
         for e, ids in self.edges_where(body, pred):
             s = FMT_I % e + "".join(FMT_I % i for i in ids) + (" " * 5 if len(ids) == 2 else "")
-            vals = [pn] * len(ids) + ([None] if len(ids) == 2 else []) + [pt] * len(ids) + ([None] if len(ids) == 2 else [])
+            pad = [None] if len(ids) == 2 else []
+            vals = [pn] * len(ids) + pad + [pt] * len(ids) + pad
             s += "".join(" " * 10 if v is None else f10(v) for v in vals)
             if case:
                 s += FMT_I % case

@@ -21,6 +21,11 @@ import os
 from . import laws
 from .deck import Deck, f10, graded
 
+__all__ = ["KGF", "TOL", "surface_cards", "history", "subdivide", "PUNCH_CONTACT_X", "PUNCH_COLUMNS", "punch",
+           "SPHERE_R", "SPHERE_E", "SPHERE_NU", "hertz_sphere", "grow", "contact_grid", "interp", "ogrid", "sphere",
+           "CYL_RI", "CYL_RA", "cylinder", "SPHERE_LOADS", "SPHERE_SURFACES", "CYL_LOADS", "CYL_CN", "CYL_MODULI",
+           "variants", "write_variants", "punch_graded", "EXAMPLES", "write_inputs"]
+
 KGF = laws.KGF_PER_NMM2  # kgf/cm2 per N/mm2 (SPEC §1; was the rounded 10.19716)
 TOL = 1e-9
 
@@ -308,7 +313,8 @@ def sphere(path, P, cn=None, nnode=4, hdiv=20.0, fine=3.0, reach=5.0, q=1.12, rh
     ogrid(d, "B", 2, s_b, bx, by, outer2b, outer1b, rad_b, lambda x, y: (x, -y))
 
     # contact pairs: the sphere's arc nodes and the half-space's surface nodes at r <= r_reach
-    sa = d.nodes_where("A", lambda x, y: x <= r_reach + TOL and abs(y - (R - math.sqrt(max(R * R - x * x, 0.0)))) < 1e-7)
+    sa = d.nodes_where("A", lambda x, y: x <= r_reach + TOL
+                       and abs(y - (R - math.sqrt(max(R * R - x * x, 0.0)))) < 1e-7)
     sb = d.nodes_where("B", lambda x, y: x <= r_reach + TOL and abs(y) < TOL)
     byr = {round(d.nodes[k - 1][0], 7): k for k in sb}
     links = [(a, byr[round(d.nodes[a - 1][0], 7)]) for a in sa]
@@ -345,7 +351,8 @@ def sphere(path, P, cn=None, nnode=4, hdiv=20.0, fine=3.0, reach=5.0, q=1.12, rh
             P, "smooth, ideal contact" if ideal else "smooth, penalty c_n = %g, m = 1" % pen if cn is None
             else "c_n = %g, m = 0.5" % cn, aH, p0H, 1e3 * dH),
         "Assumed (not in the paper): a hemisphere, flat face up, loaded by the uniform pressure",
-        "P/(pi R^2) = %.5f N/mm2; the half-space is a quarter disc (a hemisphere in 3D) of radius" % (P / (math.pi * R * R)),
+        "P/(pi R^2) = %.5f N/mm2; the half-space is a quarter disc (a hemisphere in 3D) of radius"
+        % (P / (math.pi * R * R)),
         "%g mm, outer boundary fixed; %s elements, O-grid meshes; contact nodes at equal radii," % (
             rho_b, {3: "T3", 4: "Q4", 8: "Q8", 9: "Q9"}[nnode]),
         "node to node, spacing h = a_H/%g = %.4f mm up to r = %.3f mm, then growing to r = %.3f mm;" % (
@@ -589,7 +596,8 @@ def punch_graded(path, factor=0.25, radius=25.0, **kw):
     d = punch(path, **kw)
     d.grade_towards((50.0, 0.0), radius, factor)
     d.comments = [c.replace("; contact nodes at the positions of Table 2;", ";") for c in d.comments]
-    d.comments.insert(-1, "Mesh graded towards the punch corner (50, 0): the elements there shrink to %g times" % factor)
+    d.comments.insert(-1, "Mesh graded towards the punch corner (50, 0): the elements there shrink to %g times"
+                      % factor)
     d.comments.insert(-1, "their size, nodes within %g mm of the corner move towards it (radial map)." % radius)
     d.write(path)
     return d

@@ -29,6 +29,8 @@ import numpy as np
 
 from k2d import laws
 
+__all__ = ["STATE_NAMES", "History", "law_curves", "unit_labels"]
+
 STATE_NAMES = {0: "open", 1: "loading", 2: "unloading"}
 
 

@@ -29,6 +29,9 @@ from . import laws  # noqa: E402
 from .history import History, law_curves, unit_labels  # noqa: E402
 from .results import Result  # noqa: E402
 
+__all__ = ["STYLE", "DNAME", "STATE_COLOURS", "plot_approach", "reversal_points", "plot_pairs", "plot_interface",
+           "pair_states", "plot_slip", "plot_history", "stage_table", "residual_after"]
+
 STYLE = {1: "-", -1: "--", 0: ":"}
 DNAME = {1: "loading", -1: "unloading", 0: "holding"}
 STATE_COLOURS = {"open": "0.85", "stick": "C0", "hardening branch": "C1", "slip": "C3"}
@@ -237,7 +240,8 @@ def stage_table(path, approach_nodes=None):
     rows = []
     for i, (a, b) in enumerate(h.stages()):
         f = h.figures(b)
-        rows.append("| %d | %s | %d-%d | %.4g | %.4g at (%.4g, %.4g) | %.4g | %.4g | %.4g | %.4g | %.4g | %d of %d | %s |"
+        rows.append("| %d | %s | %d-%d | %.4g | %.4g at (%.4g, %.4g) | %.4g | %.4g | %.4g | %.4g | %.4g "
+                    "| %d of %d | %s |"
                     % (i + 1, h.stage_name(a, b), h.steps[a].number, h.steps[b].number, f["load_factor"],
                        f["peak_pressure"], f["peak_at"][0], f["peak_at"][1], f["width"], f["area"],
                        f["approach"], f["normal_force"], f["tangential_force"], f["slipping"], f["closed"],

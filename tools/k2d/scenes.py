@@ -49,6 +49,10 @@ import time
 from k2d import laws
 from k2d.deck import Deck, f10
 
+__all__ = ["KGF", "ELEMENTS", "HISTORIES", "Scene", "draw", "deck_constants", "model_constants",
+           "tangential_stroke", "build_deck", "branch_closure", "check_law", "check_uniform", "check_result",
+           "run_scene"]
+
 KGF = laws.KGF_CM2            # N/mm2 per kgf/cm2
 
 ELEMENTS = (3, 4, 8, 9)
