@@ -30,7 +30,8 @@ import math
 
 import numpy as np
 
-from k2d.laws import KGF_CM2, unloading_closure, virgin_closure
+from k2d import laws
+from k2d.laws import KGF_CM2, tangential_stiffness, unloading_closure, virgin_closure
 
 __all__ = ["LENGTH_UNITS", "PRESSURE_UNITS", "RATIO_UNITS", "KIND_UNITS", "CARD_UNITS", "BRANCH_WORDS",
            "BRANCH_NAMES", "CONFIDENCE", "UNDETERMINED", "DataError", "Units", "unit_value", "parse_model_units",
@@ -523,7 +524,8 @@ def unloading_bound(pa, m, m2):
 def admissible_reversals(c, m, c2, m2, lo, hi):
     """The reversal pressures in [lo, hi] at which (c2, m2) is admissible after (c, m)."""
     ps = np.geomspace(lo, hi, 400)
-    ok = (c2 * ps ** m2 <= c * ps ** m * (1 + 1e-12)) & (c2 * m2 * ps ** m2 <= c * m * ps ** m * (1 + 1e-12))
+    p_lo, p_hi = laws.admissible_reversals(c, m, c2, m2)      # p* of docs/contact.md for m2 > m
+    ok = (ps >= p_lo * (1 - 1e-12)) & (ps <= p_hi * (1 + 1e-12))
     return ps, ok
 
 
@@ -803,7 +805,7 @@ def bilinear_return(f0, du, ke, kappa, limit, fy, hardening):
 def tangent_curve(ut, pn, R, S, mu, kappa, hardening):
     """Traction p_T of the tangential law along a displacement history ut at normal
     pressure pn, from the unloaded state (u_T = 0, p_T = 0); and the states."""
-    ke = pn ** S / R
+    ke = tangential_stiffness(pn, S, R)
     limit = mu * pn if mu is not None else math.inf
     f, fy, prev = 0.0, 0.0, 0.0
     out = np.empty(len(ut))

@@ -9,7 +9,7 @@ kgf/cm2 (UNITS KGF_UM) and the slip in mm for n; `lunit`, `punit` choose the uni
 import numpy as np
 
 from k2d.calibration import LENGTH_UNITS, PRESSURE_UNITS
-from k2d.laws import KGF_CM2, unloading_closure, virgin_closure
+from k2d.laws import KGF_CM2, tangential_stiffness, unloading_closure, virgin_closure
 
 __all__ = ["SPEC_TABLE", "TABLE_PMAX", "normal_cycles", "loading_curve", "tangent_curves", "friction_curve",
            "write_csv", "write_normal", "write_tangent", "write_friction"]
@@ -86,7 +86,7 @@ def tangent_curves(R, S, mu, kappa, levels=(5.0, 10.0, 20.0), npts=100, reach=2.
     and um."""
     PN, UT, PT = [], [], []
     for pn in levels:
-        ke = pn ** S / R
+        ke = tangential_stiffness(pn, S, R)
         lim = mu * pn
         if hardening:
             u1 = 0.625 * lim / ke
