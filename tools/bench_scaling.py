@@ -60,19 +60,18 @@ import argparse
 import csv
 import math
 import os
-import re
 import subprocess
 import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
 
 import numpy as np  # noqa: E402
 
 from k2d.build import ROOT, build_target, find_or_build  # noqa: E402
-from k2d.deck import f10  # noqa: E402
+from k2d.deck import SOLVERS, f10  # noqa: E402
 from k2d.results import Result  # noqa: E402
+from k2d.terminal import progress_solutions, read_terminal  # noqa: E402
 
 SIZES = ["1e4", "3e4", "1e5", "3e5", "1e6"]
 PATHS = ["skyline:off", "skyline:on", "umfpack:off", "umfpack:on", "mumps:off", "mumps:on"]
@@ -116,7 +115,7 @@ Physical Curve("base") = {{14, 15}};
 
 def deck_text(name, msh, condense, target, neq, first_only=False):
     """The deck of one size and CONDENSE choice (first_only: cut to its first increment)."""
-    c = [f"# Scaling benchmark (tools/bench_scaling.py): rough punch on a foundation, plane strain,",
+    c = ["# Scaling benchmark (tools/bench_scaling.py): rough punch on a foundation, plane strain,",
          f"# {neq} DOFs (target {target}), 301 contact pairs, 50 Newton increments; units N, mm,",
          f"# N/mm2, roughness constants in um and kgf/cm2 (UNITS KGF_UM).  Mesh {msh} from {name}.geo.",
          "TITLE",
@@ -222,19 +221,13 @@ def make_mesh(out, name, target):
     return msh, got
 
 
-PROGRESS = re.compile(r"^\s+(\d+)\s+[0-9.]+\s+\S+\s+\d+\s+\d+\s+(\d+)\s+\d+\s+\S+\s+[0-9.]+\s*$")
-
-
 def solutions(log):
     """Solutions of the whole run, summed over the progress lines of its terminal log (the
     result file keeps the last increment only)."""
-    n = 0
-    with open(log) as f:
-        for line in f:
-            m = PROGRESS.match(line)
-            if m:
-                n += int(m.group(2))
-    return n
+    t = read_terminal(log)
+    if t is None:
+        raise OSError("cannot read %s" % log)
+    return progress_solutions(t)
 
 
 def run(exe, deck, h5, solver, timeout):
@@ -320,7 +313,8 @@ def run_paths(exe, label, dofs, decks, paths, out, timeout, rows, first_decks=No
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--sizes", nargs="*", default=SIZES, choices=SIZES)
-    p.add_argument("--paths", nargs="*", default=PATHS, help="SOLVER:ON|OFF (default: all six; none: bench_contact only)")
+    p.add_argument("--paths", nargs="*", default=PATHS,
+                   help="SOLVER:ON|OFF (default: all six; none: bench_contact only)")
     p.add_argument("--orderings", nargs="+", default=[""], choices=["amd", "metis"],
                    help="MUMPS orderings for bench_contact (default: the solver's)")
     p.add_argument("--spheres", nargs="*", default=[], choices=sorted(SPHERES))
@@ -338,7 +332,7 @@ def main():
         return report(args.out, args.plot)
     for path in args.paths:
         s, _, c = path.partition(":")
-        if s not in ("skyline", "umfpack", "mumps", "dense") or c.upper() not in ("ON", "OFF"):
+        if s not in [n.lower() for n in SOLVERS if n != "AUTO"] or c.upper() not in ("ON", "OFF"):
             raise SystemExit(f"bench_scaling: a path is SOLVER:ON or SOLVER:OFF, found {path!r}")
     os.makedirs(args.out, exist_ok=True)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -378,7 +372,8 @@ def main():
                 lin["dofs"] = neq_mesh
                 linear.append(lin)
                 print(f"{size:>5s} {neq_mesh:9d} one linear solve: factorize {lin['factorize_s']:.3f} s + solve "
-                      f"{lin['solve_s']:.4f} s (analysis {lin['analyse_s']:.3f} s); Schur set-up {lin['schur_s']:.3f} s, "
+                      f"{lin['solve_s']:.4f} s (analysis {lin['analyse_s']:.3f} s); "
+                      f"Schur set-up {lin['schur_s']:.3f} s, "
                       f"condense {lin['condense_s']:.4f} s, expand {lin['expand_s']:.4f} s, dense Cholesky "
                       f"{lin['dense_factorize_s']:.4f} s, in the springs' coordinates {lin['proj_factorize_s']:.4f} s "
                       f"[{lin['ordering']}]", flush=True)
@@ -448,7 +443,8 @@ def orderings_table(lrows):
         an_fa = [a + b for a, b in zip(f("analyse_s"), f("factorize_s"))]
         sc_fa = [a / b for a, b in zip(f("schur_s"), f("factorize_s"))]
         print(f"  {o}: factorization {slope(d, f('factorize_s')):.2f}, analysis + factorization "
-              f"{slope(d, an_fa):.2f}, Schur set-up {slope(d, f('schur_s')):.2f}, analysis {slope(d, f('analyse_s')):.2f}; "
+              f"{slope(d, an_fa):.2f}, Schur set-up {slope(d, f('schur_s')):.2f}, "
+              f"analysis {slope(d, f('analyse_s')):.2f}; "
               f"Schur set-up / factorization " + ", ".join(f"{x:.2f}" for x in sc_fa))
 
 

@@ -35,12 +35,11 @@ import sys
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
 from k2d.build import build_target  # noqa: E402
 
 FIELDS = ["solver", "renumber", "nx", "grade", "neq", "nnz_factor", "analyse_s", "assembly_s",

@@ -24,8 +24,7 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from k2d import calibration as cal  # noqa: E402
+from k2d import calibration as cal
 
 
 def parser():

@@ -18,9 +18,8 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from k2d.build import ROOT, find_or_build  # noqa: E402
-from k2d.compare import CompareError, compare_runs, parse_vary, vary_deck  # noqa: E402
+from k2d.build import ROOT, find_or_build
+from k2d.compare import CompareError, compare_runs, parse_vary, vary_deck
 
 
 def main(argv=None):
@@ -48,7 +47,8 @@ def main(argv=None):
             if len(args.decks) != 1:
                 raise CompareError("--vary takes one deck, found %d" % len(args.decks))
             key, value = parse_vary(args.vary)
-            out = args.output or os.path.join(ROOT, "results", "compare_%s_%s_%s" % (name[0], key.lower(), value.lower()))
+            out = args.output or os.path.join(ROOT, "results",
+                                              "compare_%s_%s_%s" % (name[0], key.lower(), value.lower()))
             os.makedirs(out, exist_ok=True)
             with open(args.decks[0]) as f:
                 text = vary_deck(f.read(), key, value, args.decks[0])

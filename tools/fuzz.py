@@ -29,8 +29,7 @@ import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from k2d.results import first_nonfinite  # noqa: E402
+from k2d.results import first_nonfinite
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 GMSH_CARD = re.compile(r'^GMSH\s+(\S+)', re.M)

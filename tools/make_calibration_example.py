@@ -21,7 +21,6 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
 from k2d import calibration_data as gen  # noqa: E402
 import calibrate  # noqa: E402
 

@@ -10,10 +10,8 @@ The generators are the package module k2d.examples (tools/k2d/examples.py).
 """
 import argparse
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from k2d import examples  # noqa: E402
+from k2d import examples
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 

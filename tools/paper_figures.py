@@ -18,12 +18,10 @@ k2d.paper draws, reading through k2d.results); this is its command line.
 import argparse
 import os
 import shutil
-import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
 from k2d import paper  # noqa: E402
 from k2d.build import find_or_build  # noqa: E402
 

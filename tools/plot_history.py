@@ -16,9 +16,8 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from k2d.history_plot import plot_history, stage_table  # noqa: E402
-from k2d.results import Result  # noqa: E402
+from k2d.history_plot import plot_history, stage_table
+from k2d.results import Result
 
 
 def int_list(text):

@@ -13,11 +13,9 @@ small against the model (--zoom none shows the whole model).
 """
 
 import argparse
-import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from k2d.plot import COMPONENTS, plot_result  # noqa: E402
+from k2d.plot import COMPONENTS, plot_result
 
 
 def main(argv=None):

@@ -24,9 +24,8 @@ import csv
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from k2d.build import find_or_build  # noqa: E402
-from k2d.scenes import draw, run_scene  # noqa: E402
+from k2d.build import find_or_build
+from k2d.scenes import draw, run_scene
 
 
 def read_known(path):

@@ -43,12 +43,10 @@ command line.
 import argparse
 import os
 import shutil
-import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
 from k2d import study  # noqa: E402
 from k2d.build import find_or_build  # noqa: E402
 from k2d.tables import read_csv  # noqa: E402

@@ -33,20 +33,17 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
 
 import numpy as np  # noqa: E402
 
 from k2d.build import find_or_build, run_deck  # noqa: E402
-from k2d.deck import f10  # noqa: E402
+from k2d.deck import BLOCKS, f10, keyword  # noqa: E402
 from k2d.results import Result  # noqa: E402
 
 ALIASES = {"c_n": ("NORMAL", 1), "m": ("NORMAL", 2), "c_n2": ("NORMAL", 3), "m2": ("NORMAL", 4),
            "R": ("TANGENT", 1), "S": ("TANGENT", 2), "mu": ("FRICTION", 2), "kappa": ("HARDENING", 2)}
 INTERFACE_CARDS = ("LAW", "UNITS", "NORMAL", "TANGENT", "FRICTION", "HARDENING", "SLIP", "SURFACE",
                    "MATCHING", "RIGID", "PAIRS", "TOLERANCE")
-BLOCKS = ("TITLE", "CONTROL", "OPTIONS", "MESH", "ELEMENTS", "NODES", "RESTRAINTS", "MATERIALS",
-          "LOADS", "CONTACT", "INCREMENTS", "END")
 
 
 def parse_param(param):
@@ -57,10 +54,6 @@ def parse_param(param):
     if not m:
         raise SystemExit(f"sweep: unknown parameter {param!r}: one of {', '.join(ALIASES)} or CARD:FIELD")
     return m.group(1).upper(), int(m.group(2))
-
-
-def keyword(line):
-    return line[:10].strip().upper()
 
 
 def set_field(line, field, value):

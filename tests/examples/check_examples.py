@@ -16,6 +16,7 @@ import sys
 import numpy as np
 
 from k2d import examples as ex
+from k2d import laws
 from k2d.analysis import Pairs, contact_radius as radius
 from k2d.build import run_deck
 from k2d.published import TABLE1, TABLE1_X
@@ -120,7 +121,7 @@ def punch(args):
     closure = u.history("closure", k)
     press = u.history("pressure", k)
     imax = int(np.argmax([s.load_factor[0] for s in u.steps]))
-    ures = 1e3 * closure[imax] - 0.5 * (ex.KGF * press[imax]) ** 0.5
+    ures = laws.residual_closure(1e3 * closure[imax], ex.KGF * press[imax], 0.5, 0.5)   # um, kgf/cm2
     closed = u.history("normal_state", k) > 0
     check(ures > 0.0 and bool(np.all(closed[imax:] == (1e3 * closure[imax:] > ures - 1e-9))),
           "Bild 5: the edge pair unloads along its branch and opens at the irreversible closure u_A - c_n2 p_A^m",

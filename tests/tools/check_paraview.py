@@ -53,7 +53,8 @@ def same_range(name, arr, comp, col):
     want = (float(np.min(col)), float(np.max(col)))
     scale = max(abs(want[0]), abs(want[1]), 1e-300)
     if abs(lo - want[0]) > RTOL * scale or abs(hi - want[1]) > RTOL * scale:
-        fail(f"{name}[{comp}]: range ({lo:.17g}, {hi:.17g}) in ParaView, ({want[0]:.17g}, {want[1]:.17g}) in the HDF5 file")
+        fail(f"{name}[{comp}]: range ({lo:.17g}, {hi:.17g}) in ParaView, "
+             f"({want[0]:.17g}, {want[1]:.17g}) in the HDF5 file")
 
 
 def open_reader(kind, path):

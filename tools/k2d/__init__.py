@@ -2,7 +2,10 @@
 lines on it (docs/DEVELOPERS.md, "The Python package tools/k2d").
 
     results          the one reader of the result file (docs/results-format.md)
-    deck, patch      the deck writer; the block on a rigid base of the patch tests
+    deck, patch      the deck writer, the deck's blocks and solver names; the block on a rigid base
+                     of the patch tests
+    laws             the rough interface's laws and the unit conversion (docs/contact.md)
+    terminal         the program's terminal output (header, progress lines, summary totals)
     examples         the decks of the paper's examples and their variants
     published        the paper's Tables 1 and 2
     build, batch     find or build the program, run a deck; many decks in parallel, measured runs
@@ -14,6 +17,12 @@ lines on it (docs/DEVELOPERS.md, "The Python package tools/k2d").
     compare          a deck against a varied card, or two decks: runs and report (tools/compare.py)
     adapt, refine    refinement to a requested accuracy; a card deck split uniformly (tools/adapt.py)
 
-Scripts in tools/ put the tools directory on sys.path and import from here,
-e.g. ``from k2d.results import Result``; ctest sets PYTHONPATH for the test checkers.
+The scripts in tools/ import from here, e.g. ``from k2d.results import Result``: Python puts a
+script's own directory (tools/) first on sys.path, so they run without installation
+(``python3 tools/plot_history.py ...``).  Elsewhere set PYTHONPATH=<source>/tools (ctest does for
+the test checkers) or install the package: ``pip install -e tools`` (tools/pyproject.toml).
 """
+__all__ = ["adapt", "analysis", "batch", "build", "calibration", "calibration_data", "calibration_plots",
+           "calibration_replay", "checks", "compare", "deck", "examples", "history", "history_plot",
+           "increment_study", "laws", "paper", "patch", "plot", "published", "refine", "results", "scenes",
+           "study", "tables", "terminal"]

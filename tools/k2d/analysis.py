@@ -13,6 +13,8 @@ import math
 
 import numpy as np
 
+__all__ = ["Pairs", "at", "rel", "contact_radius", "radius_ideal"]
+
 
 class Pairs:
     """The contact pairs of a Result in the order of their position along x (r in

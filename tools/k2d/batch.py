@@ -10,13 +10,15 @@ and timing the program prints.
 """
 import concurrent.futures
 import os
-import re
 import signal
 import subprocess
 import threading
 import time
 
 from .build import run_deck
+from .terminal import program_seconds, read_terminal
+
+__all__ = ["run_parallel", "run_decks", "GNU_TIME", "run_measured", "parse_log"]
 
 
 def run_parallel(fn, items, jobs, in_order=False):
@@ -95,22 +97,10 @@ def run_measured(exe, deck, h5, log, extra=(), timeout=900.0):
 def parse_log(log):
     """Model size and the program's own timing from its terminal output (a run without -q):
     {"nodes", "equations", "pairs", "program_s"}, "" where not found."""
-    out = {"nodes": "", "equations": "", "pairs": "", "program_s": ""}
-    with open(log) as f:
-        for line in f:
-            m = re.match(r"\s*Nodes\s*:\s*(\d+)", line)
-            if m:
-                out["nodes"] = int(m.group(1))
-            m = re.match(r"\s*Equations\s*:\s*(\d+)", line)
-            if m:
-                out["equations"] = int(m.group(1))
-            m = re.match(r"\s*Contact\s*:\s*(\d+) pairs", line)
-            if m:
-                out["pairs"] = int(m.group(1))
-            tok = line.split()
-            if len(tok) >= 9 and tok[0].isdigit():
-                try:
-                    out["program_s"] = float(tok[-1])
-                except ValueError:
-                    pass
+    t = read_terminal(log)
+    if t is None:
+        raise OSError("cannot read %s" % log)
+    secs = program_seconds(t)
+    out = {k: ("" if t[k] is None else t[k]) for k in ("nodes", "equations", "pairs")}
+    out["program_s"] = "" if secs is None else secs
     return out

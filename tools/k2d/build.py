@@ -8,6 +8,8 @@
 import os
 import subprocess
 
+__all__ = ["ROOT", "build_target", "find_or_build", "run_deck"]
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 

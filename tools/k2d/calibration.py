@@ -30,8 +30,15 @@ import math
 
 import numpy as np
 
+from k2d import laws
+from k2d.laws import KGF_CM2, tangential_stiffness, unloading_closure, virgin_closure
 
-KGF_CM2 = 0.0980665            # N/mm2 per kgf/cm2 (SPEC §1)
+__all__ = ["LENGTH_UNITS", "PRESSURE_UNITS", "RATIO_UNITS", "KIND_UNITS", "CARD_UNITS", "BRANCH_WORDS",
+           "BRANCH_NAMES", "CONFIDENCE", "UNDETERMINED", "DataError", "Units", "unit_value", "parse_model_units",
+           "Column", "Table", "read_table", "Constant", "least_squares", "jacobian", "confidence", "weights", "Fit",
+           "field", "card", "card_values", "virgin", "normal_history", "normal_closure", "unloading_bound",
+           "admissible_reversals", "read_normal", "fit_normal", "bilinear_return", "tangent_curve", "read_tangent",
+           "fit_tangent", "fredriksson", "read_friction", "fit_friction"]
 
 # unit name (lower case) -> value in mm, N/mm2
 LENGTH_UNITS = {"um": 1.0e-3, "µm": 1.0e-3, "μm": 1.0e-3, "micron": 1.0e-3, "mm": 1.0}
@@ -463,8 +470,7 @@ def card_values(line):
 
 
 # ---------------------------------------------------------------------------- normal law
-def virgin(p, c, m):
-    return c * np.maximum(p, 0.0) ** m
+virgin = virgin_closure        # u = c_n p^m (k2d.laws)
 
 
 def normal_history(p):
@@ -501,7 +507,9 @@ def normal_closure(p, rev, c, m, c2, m2):
     on = rev >= 0
     if np.any(on):
         pa = p[rev[on]]
-        u[on] = c * pa ** m - c2 * (pa ** m2 - np.maximum(p[on], 0.0) ** m2)
+        # the bare branch (clamp=False): the fit holds (c2, m2) admissible by its parametrization,
+        # and the unloading-only fit (unloading_free) reports what the data say, admissible or not
+        u[on] = unloading_closure(p[on], virgin_closure(pa, c, m), pa, c2, m2, clamp=False)
     return u
 
 
@@ -516,7 +524,8 @@ def unloading_bound(pa, m, m2):
 def admissible_reversals(c, m, c2, m2, lo, hi):
     """The reversal pressures in [lo, hi] at which (c2, m2) is admissible after (c, m)."""
     ps = np.geomspace(lo, hi, 400)
-    ok = (c2 * ps ** m2 <= c * ps ** m * (1 + 1e-12)) & (c2 * m2 * ps ** m2 <= c * m * ps ** m * (1 + 1e-12))
+    p_lo, p_hi = laws.admissible_reversals(c, m, c2, m2)      # p* of docs/contact.md for m2 > m
+    ok = (ps >= p_lo * (1 - 1e-12)) & (ps <= p_hi * (1 + 1e-12))
     return ps, ok
 
 
@@ -718,7 +727,7 @@ def _fit_cycles(fit, p, u, rev, sig, c0, m0, same_exponent):
     fit.loading_only = False
     fit.reversal_pressures = pa
     for a in sorted(set(int(a) for a in rev[rev >= 0])):
-        ures = c * p[a] ** m - c2 * p[a] ** m2
+        ures = virgin_closure(p[a], c, m) - c2 * p[a] ** m2     # the fit's bare u_res (may be < 0)
         fit.notes.append("reversal at p_A = %s %s (line %d): residual closure after unloading %.4g %s"
                          % (_fmt(p[a]), fit.units.pressure_name, fit.lines[a], ures, fit.units.length_name))
     if abs(m2 - m) > 1e-9 * m:
@@ -796,7 +805,7 @@ def bilinear_return(f0, du, ke, kappa, limit, fy, hardening):
 def tangent_curve(ut, pn, R, S, mu, kappa, hardening):
     """Traction p_T of the tangential law along a displacement history ut at normal
     pressure pn, from the unloaded state (u_T = 0, p_T = 0); and the states."""
-    ke = pn ** S / R
+    ke = tangential_stiffness(pn, S, R)
     limit = mu * pn if mu is not None else math.inf
     f, fy, prev = 0.0, 0.0, 0.0
     out = np.empty(len(ut))

@@ -8,7 +8,11 @@ kgf/cm2 (UNITS KGF_UM) and the slip in mm for n; `lunit`, `punit` choose the uni
 """
 import numpy as np
 
-from k2d.calibration import KGF_CM2, LENGTH_UNITS, PRESSURE_UNITS
+from k2d.calibration import LENGTH_UNITS, PRESSURE_UNITS
+from k2d.laws import KGF_CM2, tangential_stiffness, unloading_closure, virgin_closure
+
+__all__ = ["SPEC_TABLE", "TABLE_PMAX", "normal_cycles", "loading_curve", "tangent_curves", "friction_curve",
+           "write_csv", "write_normal", "write_tangent", "write_friction"]
 
 # SPEC §2.4, Ito 2008 Table 6-2 (after Back et al.): cast-iron joints, C in um/(kgf/cm2)^m;
 # the ranges of the table are taken at both ends.
@@ -54,14 +58,15 @@ def normal_cycles(c, m, c2, m2, peaks=(1.0, 3.0, 8.0, 25.0), low=0.0, npts=40, n
         B.extend(b)
 
     ps = np.linspace(0.0, peaks[0], npts + 1)[1:]
-    add(ps, c * ps ** m, ["L"] * npts)
+    add(ps, virgin_closure(ps, c, m), ["L"] * npts)
     for i, pa in enumerate(peaks):
-        ua = c * pa ** m
+        ua = virgin_closure(pa, c, m)
         ps = np.linspace(pa, low, npts + 1)[1:]
-        add(ps, ua - c2 * (pa ** m2 - ps ** m2), ["U"] * npts)
+        # measurements may lie beyond the program's admissible range: the bare formula, no clamp
+        add(ps, unloading_closure(ps, ua, pa, c2, m2, clamp=False), ["U"] * npts)
         if i + 1 < len(peaks):
             ps = np.linspace(low, peaks[i + 1], npts + 1)[1:]
-            us = np.where(ps <= pa, ua - c2 * (pa ** m2 - ps ** m2), c * ps ** m)
+            us = np.where(ps <= pa, unloading_closure(ps, ua, pa, c2, m2, clamp=False), virgin_closure(ps, c, m))
             add(ps, us, ["R" if q < pa else "L" for q in ps])
     rng = np.random.default_rng(seed)
     return np.array(P), _noisy(U, noise, rng), B
@@ -70,7 +75,7 @@ def normal_cycles(c, m, c2, m2, peaks=(1.0, 3.0, 8.0, 25.0), low=0.0, npts=40, n
 def loading_curve(c, m, pmax=TABLE_PMAX, step=0.5):
     """The virgin curve sampled at round pressures step, 2 step, ..., pmax (kgf/cm2)."""
     ps = np.arange(1, int(round(pmax / step)) + 1) * step
-    return ps, c * ps ** m
+    return ps, virgin_closure(ps, c, m)
 
 
 def tangent_curves(R, S, mu, kappa, levels=(5.0, 10.0, 20.0), npts=100, reach=2.0, noise=0.0, seed=2,
@@ -81,7 +86,7 @@ def tangent_curves(R, S, mu, kappa, levels=(5.0, 10.0, 20.0), npts=100, reach=2.
     and um."""
     PN, UT, PT = [], [], []
     for pn in levels:
-        ke = pn ** S / R
+        ke = tangential_stiffness(pn, S, R)
         lim = mu * pn
         if hardening:
             u1 = 0.625 * lim / ke

@@ -11,6 +11,8 @@ import numpy as np  # noqa: E402
 
 from k2d import calibration as cal  # noqa: E402
 
+__all__ = ["DPI", "COLOURS", "plot_normal", "plot_tangent", "plot_friction"]
+
 DPI = 80
 COLOURS = {"L": "tab:blue", "U": "tab:orange", "R": "tab:green"}
 

@@ -27,6 +27,8 @@ from k2d.calibration import card
 from k2d.deck import Deck
 from k2d.results import Result
 
+__all__ = ["ReplayError", "Replay", "replay_normal", "replay_tangent", "summary"]
+
 
 class ReplayError(Exception):
     pass

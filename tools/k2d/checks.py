@@ -23,6 +23,9 @@ import numpy as np
 
 from .results import Result
 
+__all__ = ["NODE_FIELDS", "RUN_QUANTITIES", "NODE_SETS", "PAIR_SETS", "REDUCTIONS", "OPERATORS", "CheckFormatError",
+           "Check", "parse", "evaluate", "check_result"]
+
 # nodal quantities: (field of an increment, column)
 NODE_FIELDS = {"u_x": ("displacement", 0), "u_y": ("displacement", 1),
                "stress_xx": ("stress_nodal", 0), "stress_yy": ("stress_nodal", 1),

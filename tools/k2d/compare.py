@@ -27,16 +27,19 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from .batch import run_measured  # noqa: E402
+from .deck import BLOCKS, keyword  # noqa: E402
 from .history import History, unit_labels  # noqa: E402
 from .results import Result  # noqa: E402
+from .terminal import read_terminal  # noqa: E402
+
+__all__ = ["VARY", "CompareError", "parse_vary", "vary_deck", "run_totals", "run_figures", "pct", "ROWS",
+           "shown_path", "compare_runs"]
 
 VARY = {
     "LAW": {"ROUGH": "ROUGH", "IDEAL": "IDEAL"},
     "SCHEME": {"INCREMENTAL": "INCREMENTAL", "EXPLICIT": "INCREMENTAL", "NEWTON": "NEWTON",
                "RETURN": "NEWTON", "MODIFIED": "MODIFIED"},
 }
-BLOCKS = {"TITLE", "CONTROL", "OPTIONS", "ELEMENTS", "NODES", "MESH", "RESTRAINTS", "TIES", "MATERIALS",
-          "LOADS", "CONTACT", "INCREMENTS", "END"}
 
 
 class CompareError(Exception):
@@ -56,33 +59,29 @@ def parse_vary(text):
     return key, VARY[key][value]
 
 
-def _keyword(line):
-    return line[:10].split("#")[0].strip().upper()
-
-
 def vary_deck(text, key, value, name="deck"):
     """The deck `text` with the card KEY set to VALUE in its CONTACT block: LAW on every
     interface (cards before the first INTERFACE card open interface 1), SCHEME (or its synonym
     UPDATE) once for the block.  CompareError when the deck has no CONTACT block."""
     lines = text.splitlines(keepends=True)
     try:
-        start = next(i for i, ln in enumerate(lines) if _keyword(ln) == "CONTACT" and not ln.startswith("#"))
+        start = next(i for i, ln in enumerate(lines) if keyword(ln) == "CONTACT" and not ln.startswith("#"))
     except StopIteration:
         raise CompareError("%s: no CONTACT block, nothing to vary with %s" % (name, key)) from None
-    end = next((i for i in range(start + 1, len(lines)) if _keyword(lines[i]) in BLOCKS), len(lines))
+    end = next((i for i in range(start + 1, len(lines)) if keyword(lines[i]) in BLOCKS), len(lines))
     drop = ("LAW",) if key == "LAW" else ("SCHEME", "UPDATE")
-    body = [ln for ln in lines[start + 1:end] if _keyword(ln) not in drop]
+    body = [ln for ln in lines[start + 1:end] if keyword(ln) not in drop]
     card = "%-10s%s\n" % (key, value)
     out = []
     if key == "SCHEME":
         out = [card] + body
     else:
         first = next((ln for ln in body if ln.strip() and not ln.lstrip().startswith("#")), "")
-        if _keyword(first) != "INTERFACE":
+        if keyword(first) != "INTERFACE":
             out.append(card)
         for ln in body:
             out.append(ln)
-            if _keyword(ln) == "INTERFACE":
+            if keyword(ln) == "INTERFACE":
                 out.append(card)
     return "".join(lines[:start + 1] + out + lines[end:])
 
@@ -90,13 +89,8 @@ def vary_deck(text, key, value, name="deck"):
 def run_totals(log):
     """(solutions, increments) of the whole run from the program's terminal output (its summary
     line "N solutions in M increments"), or None when the log has no such line."""
-    try:
-        with open(log) as f:
-            text = f.read()
-    except OSError:
-        return None
-    m = re.findall(r"^\s*(\d+) solutions in (\d+) increments", text, flags=re.M)
-    return (int(m[-1][0]), int(m[-1][1])) if m else None
+    t = read_terminal(log)
+    return t["totals"] if t else None
 
 
 def run_figures(h5, cpu, wall, rc, approach_nodes=None, log=None):
@@ -131,7 +125,8 @@ def pct(a, b):
 
 
 ROWS = [("status", "status", None), ("exit code", "exit_code", None), ("increments", "increments", "%d"),
-        ("increments kept in the result file", "kept", "%d"), ("solutions (all increments)", "solutions", "%d"), ("CPU time [s]", "cpu_s", "%.3g"),
+        ("increments kept in the result file", "kept", "%d"), ("solutions (all increments)", "solutions", "%d"),
+        ("CPU time [s]", "cpu_s", "%.3g"),
         ("load factor at the end", "load_factor", "%.6g"), ("peak pressure [{stress}]", "peak_pressure", "%.6g"),
         ("contact width [{length}]", "width", "%.6g"), ("contact area [{length}²]", "area", "%.6g"),
         ("approach [{length}]", "approach", "%.6g"), ("total normal force [{force}]", "normal_force", "%.6g"),

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Write Kontakt2D decks for structured multi-block meshes.
 
 A small library used by the scripts that generate the example and test decks
@@ -14,7 +13,19 @@ bodies that touch get coincident node pairs for the contact surfaces.
 """
 import math
 
+__all__ = ["BLOCKS", "SOLVERS", "keyword", "f10", "fine_then_graded", "graded", "Deck", "circle_y"]
+
 FMT_I = "%5d"
+# the deck's blocks, in their order (src/io/deck_reader.f90, docs/deck-format.md)
+BLOCKS = ("TITLE", "CONTROL", "OPTIONS", "MESH", "ELEMENTS", "NODES", "RESTRAINTS", "TIES", "MATERIALS",
+          "LOADS", "CONTACT", "INCREMENTS", "END")
+# CONTROL's SOLVER field (columns 36-45; blank: AUTO) and the command line's -s, in lower case there
+SOLVERS = ("SKYLINE", "UMFPACK", "MUMPS", "DENSE", "AUTO")
+
+
+def keyword(line):
+    """The keyword of a card: its first ten columns, upper case, without a comment."""
+    return line[:10].split("#")[0].strip().upper()
 
 
 def f10(x):
@@ -279,7 +290,8 @@ class Deck:
         """Uniform pressure pn (compressive) and traction pt on the edges selected."""
         for e, ids in self.edges_where(body, pred):
             s = FMT_I % e + "".join(FMT_I % i for i in ids) + (" " * 5 if len(ids) == 2 else "")
-            vals = [pn] * len(ids) + ([None] if len(ids) == 2 else []) + [pt] * len(ids) + ([None] if len(ids) == 2 else [])
+            pad = [None] if len(ids) == 2 else []
+            vals = [pn] * len(ids) + pad + [pt] * len(ids) + pad
             s += "".join(" " * 10 if v is None else f10(v) for v in vals)
             if case:
                 s += FMT_I % case

@@ -27,6 +27,10 @@ Reads the results through k2d.results only.
 """
 import numpy as np
 
+from k2d import laws
+
+__all__ = ["STATE_NAMES", "History", "law_curves", "unit_labels"]
+
 STATE_NAMES = {0: "open", 1: "loading", 2: "unloading"}
 
 
@@ -204,14 +208,14 @@ class History:
 
 def law_curves(interface, pa_ua=None, pmax=1.0, n=200):
     """The virgin curve (u = cn p^m) and, for each reversal point (u_A, p_A), the unloading
-    curve through it (u = u_A - cn2 (p_A^m2 - p^m2), SPEC D8), in the model units of
+    curve through it (u = u_A - cn2 (p_A^m2 - p^m2), SPEC D8, through the origin beyond p*), in the model units of
     /contact/interface_K (normal_model = (cn, m, cn2, m2)).  Returns [(label, u, p)]."""
     cn, m, cn2, m2 = (float(v) for v in np.atleast_1d(interface["normal_model"])[:4])
     p = np.linspace(0.0, pmax, n)
-    out = [("virgin curve u = c_n p^m", cn * p ** m, p)]
+    out = [("virgin curve u = c_n p^m", laws.virgin_closure(p, cn, m), p)]
     for ua, pa in pa_ua or []:
         q = np.linspace(0.0, pa, n)
-        out.append(("unloading from (%.3g, %.3g)" % (ua, pa), ua - cn2 * (pa ** m2 - q ** m2), q))
+        out.append(("unloading from (%.3g, %.3g)" % (ua, pa), laws.unloading_closure(q, ua, pa, cn2, m2), q))
     return out
 
 

@@ -25,8 +25,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import laws  # noqa: E402
 from .history import History, law_curves, unit_labels  # noqa: E402
 from .results import Result  # noqa: E402
+
+__all__ = ["STYLE", "DNAME", "STATE_COLOURS", "plot_approach", "reversal_points", "plot_pairs", "plot_interface",
+           "pair_states", "plot_slip", "plot_history", "stage_table", "residual_after"]
 
 STYLE = {1: "-", -1: "--", 0: ":"}
 DNAME = {1: "loading", -1: "unloading", 0: "holding"}
@@ -236,7 +240,8 @@ def stage_table(path, approach_nodes=None):
     rows = []
     for i, (a, b) in enumerate(h.stages()):
         f = h.figures(b)
-        rows.append("| %d | %s | %d-%d | %.4g | %.4g at (%.4g, %.4g) | %.4g | %.4g | %.4g | %.4g | %.4g | %d of %d | %s |"
+        rows.append("| %d | %s | %d-%d | %.4g | %.4g at (%.4g, %.4g) | %.4g | %.4g | %.4g | %.4g | %.4g "
+                    "| %d of %d | %s |"
                     % (i + 1, h.stage_name(a, b), h.steps[a].number, h.steps[b].number, f["load_factor"],
                        f["peak_pressure"], f["peak_at"][0], f["peak_at"][1], f["width"], f["area"],
                        f["approach"], f["normal_force"], f["tangential_force"], f["slipping"], f["closed"],
@@ -278,6 +283,6 @@ def residual_after(h, a, b):
             continue
         cn2, m2 = (float(v) for v in np.atleast_1d(law["normal_model"])[2:4])
         # max(u_res, 0): beyond the law's admissible range p* (docs/contact.md)
-        r = max(ua[j] - cn2 * pa[j] ** m2, 0.0)
+        r = laws.residual_closure(ua[j], pa[j], cn2, m2)
         best = r if np.isnan(best) else max(best, r)
     return best

@@ -18,9 +18,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import laws  # noqa: E402
 from .build import ROOT  # noqa: E402
 from .results import Result  # noqa: E402
 from .tables import write_csv as write_csv_table  # noqa: E402
+
+__all__ = ["CASES", "COUNTS", "SCHEMES", "KGF", "make_deck", "run", "measure", "write_csv", "chart"]
 
 CASES = {
     "V1 normal patch test": os.path.join(ROOT, "tests", "decks", "contact", "v1_plane_q4.dat"),
@@ -28,13 +31,16 @@ CASES = {
 }
 COUNTS = [2, 3, 5, 10, 20, 40, 80]
 SCHEMES = ["INCREMENTAL", "INCREMENTAL+ITERATE", "NEWTON"]
-KGF = 1.0 / 0.0980665
+KGF = laws.KGF_PER_NMM2
 
 
 def make_deck(base, n, scheme, path):
     """The base deck with N increments (5 % first) and the given scheme."""
     text = open(base).read()
-    incs = "INCREMENTS\n    1      0.05\n%5d       1.0\nEND\n" % (n - 1) if n > 1 else "INCREMENTS\n    1       1.0\nEND\n"
+    if n > 1:
+        incs = "INCREMENTS\n    1      0.05\n%5d       1.0\nEND\n" % (n - 1)
+    else:
+        incs = "INCREMENTS\n    1       1.0\nEND\n"
     text = re.sub(r"INCREMENTS\n.*?END\n", incs, text, flags=re.S)
     first = "ITERATE" if scheme.endswith("+ITERATE") else "SECANT"
     scheme = scheme.split("+")[0]

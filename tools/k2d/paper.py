@@ -20,11 +20,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from . import examples as ex  # noqa: E402
+from . import laws  # noqa: E402
 from .analysis import Pairs, at, contact_radius, rel  # noqa: E402
 from .batch import run_decks  # noqa: E402
 from .published import TABLE1, TABLE1_LABEL, TABLE1_X, TABLE2_Q8, TABLE2_Q8B, TABLE2_T3  # noqa: E402
 from .results import Result  # noqa: E402
 from .tables import markdown_table, write_csv  # noqa: E402
+
+__all__ = ["DPI", "run_examples", "load", "radius", "md_table", "savefig", "example_51", "hertz_p", "example_52",
+           "example_53", "EXAMPLES", "names_of", "draw"]
 
 DPI = 90
 
@@ -159,8 +163,10 @@ def example_51(out, md):
             pn, pt = at(r.x, r.last("pressure"), x, 1e-3), at(r.x, r.last("shear"), x, 1e-3)
             st = int(at(r.x, r.last("tangential_state"), x, 1e-3))
             rows.append([lab, x, ref["pn"][k], pn, rel(pn, ref["pn"][k]), ref["pT"][k], pt,
-                         rel(pt, ref["pT"][k]) if k else float("nan"), pt / pn, {0: "stick", 2: "slip"}.get(st, "branch")])
-    header = ["mesh", "x", "pn paper", "pn ours", "pn diff %", "pT paper", "pT ours", "pT diff %", "pT/pn ours", "state"]
+                         rel(pt, ref["pT"][k]) if k else float("nan"), pt / pn,
+                         {0: "stick", 2: "slip"}.get(st, "branch")])
+    header = ["mesh", "x", "pn paper", "pn ours", "pn diff %", "pT paper", "pT ours", "pT diff %", "pT/pn ours",
+              "state"]
     _csv(out, "table2.csv", header, rows)
     md_table(md, "Table 2: contact stresses, Coulomb 0.2 (column 2); N/mm2; paper's 3-node values for T3 and Q4, "
              "its first 8-node block for Q8", header, rows,
@@ -287,9 +293,8 @@ def example_51(out, md):
         j = np.where(closed[imax:])[0] + imax
         ax.plot(p[j], u[j], ".-", color=col, ms=3, label="unloading, c_n2 = %g" % cn2)
         # the residual closure of the unloading branch at the reversal point A
-        f = ex.KGF
         ua, pa = u[imax], p[imax]
-        ures = ua - cn2 * (f * pa) ** 0.5
+        ures = laws.residual_closure(ua, ex.KGF * pa, cn2, 0.5)     # um, kgf/cm2
         ax.plot([p[j[-1]], 0.0], [u[j[-1]], ures], ":", color=col)
         ax.plot([0.0], [ures], "o", color=col)
         ax.annotate("B (c_n2 = %g): %.2f um" % (cn2, ures), (0.0, ures), xytext=(0.25, ures - 0.35), fontsize=8,
@@ -298,7 +303,8 @@ def example_51(out, md):
             rows.append([cn2, i + 1, lam[i], p[i], u[i], int(ns[i])])
         rows.append([cn2, "B", 0.0, 0.0, ures, 0])
     pp = np.linspace(0.0, 2.3, 200)
-    ax.plot(pp, 1.0 * (ex.KGF * pp) ** 0.5, "--", color="0.5", lw=1, label="virgin curve u = c_n p^m (exact)")
+    ax.plot(pp, laws.virgin_closure(ex.KGF * pp, 1.0, 0.5), "--", color="0.5", lw=1,
+            label="virgin curve u = c_n p^m (exact)")
     ax.set_xlabel("normal pressure p_n at the punch edge [N/mm2]")
     ax.set_ylabel("closure u_n [um]")
     ax.grid(alpha=0.3)

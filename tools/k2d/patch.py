@@ -7,6 +7,8 @@ the stability decks built on them (tests/decks/contact, tests/decks/stability).
 """
 from .deck import Deck
 
+__all__ = ["block_on_base", "surfaces"]
+
 
 def block_on_base(title, ntype=1, nnode=4, xs=None, nya=4, W=10.0, H=10.0, E=1000.0, nu=0.0,
                   fix_x_line=True):

@@ -17,6 +17,8 @@ import numpy as np  # noqa: E402
 from .history import unit_labels  # noqa: E402
 from .results import Result  # noqa: E402
 
+__all__ = ["COMPONENTS", "von_mises", "triangles", "outline", "load_factor_text", "plot_result"]
+
 COMPONENTS = {"xx": 0, "yy": 1, "xy": 2, "zz": 3}
 
 

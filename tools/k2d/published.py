@@ -6,6 +6,8 @@ docs/validation.md compares them with the program's results.
     TABLE1[2][1]      # its u_T^p
     TABLE2_T3["pn"]   # p_n in N/mm2 at the contact nodes TABLE2_T3["x"] (mm), 3-node elements
 """
+
+__all__ = ["TABLE1_X", "TABLE1", "TABLE1_LABEL", "TABLE2_T3", "TABLE2_Q8", "TABLE2_Q8B"]
 # Table 1: 2x/B, then (u_T, u_T^p) in um for the five columns
 TABLE1_X = [0.00, 0.10, 0.20, 0.30, 0.40, 0.50, 0.60, 0.70, 0.80, 0.85, 0.90, 0.95, 1.00]
 TABLE1 = {

@@ -31,6 +31,8 @@ so a Result can be kept while the program writes more.
 import h5py
 import numpy as np
 
+__all__ = ["ContactDefinition", "Step", "Result", "dataset", "first_nonfinite", "audit"]
+
 
 def _text(v):
     """An attribute value as Python: strings decoded, 1-element arrays kept as arrays."""

@@ -46,9 +46,14 @@ import random
 import subprocess
 import time
 
+from k2d import laws
 from k2d.deck import Deck, f10
 
-KGF = 0.0980665            # N/mm2 per kgf/cm2
+__all__ = ["KGF", "ELEMENTS", "HISTORIES", "Scene", "draw", "deck_constants", "model_constants",
+           "tangential_stroke", "build_deck", "branch_closure", "check_law", "check_uniform", "check_result",
+           "run_scene"]
+
+KGF = laws.KGF_CM2            # N/mm2 per kgf/cm2
 
 ELEMENTS = (3, 4, 8, 9)
 HISTORIES = ("unload", "reload", "partial", "tangential")
@@ -149,15 +154,15 @@ def deck_constants(sc):
     and um, converted for N_UM."""
     if sc.units == "KGF_UM":
         return _q(sc.cn), _q(sc.cn2)
-    return _q(sc.cn * (1.0 / KGF) ** sc.m), _q(sc.cn2 * (1.0 / KGF) ** sc.m2)
+    f = laws.pressure_scale("KGF_UM")
+    return _q(sc.cn * f ** sc.m), _q(sc.cn2 * f ** sc.m2)
 
 
 def model_constants(sc):
     """c_n and c_n2 in model units (mm, N/mm2), converted from the deck's values as the program
     converts them (docs/contact.md, SPEC 2.4)."""
     cn, cn2 = deck_constants(sc)
-    f = 1.0 / KGF if sc.units == "KGF_UM" else 1.0
-    return 1e-3 * cn * f ** sc.m, 1e-3 * cn2 * f ** sc.m2
+    return laws.model_constant(cn, sc.m, sc.units), laws.model_constant(cn2, sc.m2, sc.units)
 
 
 def tangential_stroke(sc):
@@ -167,8 +172,8 @@ def tangential_stroke(sc):
         return sc.tangential_factor * sc.mu * sc.p0 * (sc.height_a + sc.height_b) / min(sc.EA, sc.EB) * 3.0
     cnm, _ = model_constants(sc)
     # k_T = p^S / R with R = 2 c_n m (1 + nu), S = 1 - m (model units), per unit area
-    R = 2.0 * cnm * sc.m * (1.0 + 0.5 * (sc.nuA + sc.nuB))
-    kt = sc.p0 ** (1.0 - sc.m) / R
+    R = laws.r_literature(cnm, sc.m, 0.5 * (sc.nuA + sc.nuB))
+    kt = laws.tangential_stiffness(sc.p0, 1.0 - sc.m, R)
     u_slip = sc.mu * sc.p0 / kt
     shear = sc.mu * sc.p0 * (sc.height_a / sc.EA + sc.height_b / sc.EB) * 2.6
     return sc.tangential_factor * (u_slip + shear)
@@ -264,8 +269,8 @@ def branch_closure(sc, p, pa):
     the unloading branch u = u_A - c_n2 (p_A^m2 - p^m2) (docs/contact.md)."""
     cnm, cn2m = model_constants(sc)
     if p >= pa:
-        return cnm * p ** sc.m
-    return cnm * pa ** sc.m - cn2m * (pa ** sc.m2 - p ** sc.m2)
+        return laws.virgin_closure(p, cnm, sc.m)
+    return laws.unloading_closure(p, laws.virgin_closure(pa, cnm, sc.m), pa, cn2m, sc.m2)
 
 
 def check_law(sc, r):

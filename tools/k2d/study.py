@@ -26,6 +26,14 @@ from .batch import parse_log, run_measured, run_parallel  # noqa: E402
 from .results import Result  # noqa: E402
 from .tables import write_dict_csv  # noqa: E402
 
+__all__ = ["ELEMENTS", "SCHEMES", "P_SPHERE", "CN_ROUGH", "SPHERE_LEVELS", "PUNCH_LEVELS", "PUNCH_GRADE_RADIUS",
+           "CYLINDER_LEVELS", "P_CYLINDER", "CN_CYLINDER", "BENCHES", "INCREMENTS", "AUTO_SCHEME", "SOLVER_SLICE",
+           "BASELINE", "REFERENCES", "QUICK_REFERENCES", "TITLES", "ERROR_NAMES", "FIELDS", "DPI", "update_card",
+           "write_deck", "Case", "read_h5", "measures", "IMBALANCE_LIMIT", "REPEAT_BELOW", "REPEATS", "run_case",
+           "run_pool", "matrix", "reference_cases", "convergence_cases", "fnum", "attach_errors", "write_csv",
+           "pareto", "ok_points", "label", "SCHEME_STYLE", "ELEMENT_STYLE", "clip", "chart", "pct", "summary",
+           "convergence_table"]
+
 ELEMENTS = {"T3": 3, "Q4": 4, "Q8": 8, "Q9": 9}
 SCHEMES = ["incremental", "newton", "automatic"]
 P_SPHERE = 200.0                 # N, the load of both sphere benchmarks
@@ -453,7 +461,8 @@ def summary(rows, path, benches, refs):
             L.append("| %s | %s | %s | %s | %.3g | %s | %s (%s) | %.0f |" % (
                 label(r), pct(r["error_1"]), pct(r["error_2"]), pct(e), c / base, r["solutions"], r["steps"],
                 r["cuts"], fnum(r["maxrss_mb"])))
-        L += ["", "Best error per scheme and the CPU ratio it took:", "", "| scheme | best error | model | CPU / baseline |",
+        L += ["", "Best error per scheme and the CPU ratio it took:", "",
+              "| scheme | best error | model | CPU / baseline |",
               "|---|---|---|---|"]
         for sc in SCHEMES:
             sel = [p for p in pts if p[2]["scheme"] == sc]

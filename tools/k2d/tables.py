@@ -9,6 +9,8 @@
 import csv
 import math
 
+__all__ = ["write_csv", "write_dict_csv", "read_csv", "markdown_table"]
+
 
 def _cell(v, fmt):
     return (fmt % v) if fmt and isinstance(v, float) else v

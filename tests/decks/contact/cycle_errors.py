@@ -18,9 +18,11 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "tools"))
+from k2d import laws  # noqa: E402
 from k2d.results import Result  # noqa: E402
-CN = 1.0e-3 * (1.0 / 0.0980665) ** 0.5     # mm / (N/mm2)^0.5
-CN2 = 0.5 * CN
+
+CN = laws.model_constant(1.0, 0.5, "KGF_UM")     # mm / (N/mm2)^0.5
+CN2 = laws.model_constant(0.5, 0.5, "KGF_UM")
 
 
 def law(pressures):
@@ -28,11 +30,11 @@ def law(pressures):
     out, pa, ua = [], 0.0, 0.0
     for k, p in enumerate(pressures):
         if pa > 0.0 and p < pa:
-            out.append(ua - CN2 * (pa ** 0.5 - p ** 0.5))
+            out.append(laws.unloading_closure(p, ua, pa, CN2, 0.5))
         else:
-            out.append(CN * p ** 0.5)
+            out.append(laws.virgin_closure(p, CN, 0.5))
             if k + 1 < len(pressures) and pressures[k + 1] < p and p >= pa:
-                pa, ua = p, CN * p ** 0.5
+                pa, ua = p, laws.virgin_closure(p, CN, 0.5)
     return np.array(out)
 
 

@@ -22,6 +22,7 @@ Exit 0 when everything holds, 1 otherwise, 2 when the check file is malformed.""
 import math
 import sys
 
+from k2d import laws
 from k2d.checks import CheckFormatError, check_result, parse
 from k2d.results import Result
 
@@ -84,7 +85,7 @@ def check_law(path):
             if abs(cur["friction"][j] - mu) > 1.0e-12 * mu:
                 bad.append("increment %d pair %d: friction %.15g, the law mu(v_e) gives %.15g"
                            % (i + 1, j + 1, cur["friction"][j], mu))
-            ke = area[j] * prev["pressure"][j] ** s_exp / rt[j]
+            ke = area[j] * laws.tangential_stiffness(prev["pressure"][j], s_exp, rt[j])
             fn = float(cur["force_normal"][j])
             du = float(cur["slip"][j] - prev["slip"][j])
             ft, xn, ts, dist = replay(f[j], du, ke, kappa, mu * fn, x[j], hardening)
