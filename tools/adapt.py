@@ -25,9 +25,8 @@ import os
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from k2d import adapt as ad  # noqa: E402
-from k2d.build import ROOT, find_or_build  # noqa: E402
+from k2d import adapt as ad
+from k2d.build import ROOT, find_or_build
 
 
 def main(argv=None):

@@ -33,7 +33,6 @@ The report (Markdown) goes to --md (default stdout) and the chart to --png.
 """
 import argparse
 import csv
-import glob
 import math
 import os
 import subprocess
@@ -41,10 +40,9 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from k2d import adapt as ad  # noqa: E402
-from k2d.build import ROOT, find_or_build  # noqa: E402
-from k2d.results import Result  # noqa: E402
+from k2d import adapt as ad
+from k2d.build import ROOT, find_or_build
+from k2d.results import Result
 
 NU = 0.3
 
@@ -256,7 +254,7 @@ def main(argv=None):
     ap.add_argument("--runs", default=os.path.join(ROOT, "results", "adapt_validation"))
     ap.add_argument("--reuse", action="store_true", help="read the runs already in --runs")
     ap.add_argument("--target", type=float, default=None,
-                    help="estimate to refine to (default per deck: 0.01 for Q4, 0.002 for Q8, as in docs/adaptivity.md)")
+                    help="estimate to refine to (default per deck: 0.01 for Q4, 0.002 for Q8; docs/adaptivity.md)")
     ap.add_argument("--max-dofs", type=int, default=100000)
     ap.add_argument("--tol", type=float, default=0.01, help="accuracy asked of the measures (default 1 %%)")
     ap.add_argument("--md", default=None)

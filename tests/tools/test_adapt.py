@@ -224,7 +224,7 @@ class CardDeck(unittest.TestCase):
             self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
         # the exact energy-norm error: ||u||^2 = work of the bore pressure = 2 pi a H p u(a) (u_r(a)
         # is uniform along the slice), and ||u - u_h||^2 = ||u||^2 - ||u_h||^2 (Galerkin)
-        E, nu, a, b, p, height = 2e5, 0.3, 10.0, 20.0, 100.0, 2.0
+        E, nu, a, b, p = 2e5, 0.3, 10.0, 20.0, 100.0
         A, B = p * a * a / (b * b - a * a), p * a * a * b * b / (b * b - a * a)
         ua = (1 + nu) / E * ((1 - 2 * nu) * A * a + B / a)
         effs = []

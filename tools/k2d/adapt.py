@@ -117,11 +117,11 @@ def _shape_deriv(nn, xi, eta):
         dN = np.stack([np.concatenate([dNc_x, dNm_x], 1), np.concatenate([dNc_e, dNm_e], 1)], axis=-1)
         return N, dN
 
-    def l(s):
+    def lag1d(s):
         return np.stack([0.5 * s * (s - 1), 1 - s * s, 0.5 * s * (s + 1)], 1), \
             np.stack([s - 0.5, -2 * s, s + 0.5], 1)
-    lx, dlx = l(xi)
-    ly, dly = l(eta)
+    lx, dlx = lag1d(xi)
+    ly, dly = lag1d(eta)
     ij = [(0, 0), (2, 0), (2, 2), (0, 2), (1, 0), (2, 1), (1, 2), (0, 1), (1, 1)]
     N = np.stack([lx[:, i] * ly[:, j] for i, j in ij], 1)
     dN = np.stack([np.stack([dlx[:, i] * ly[:, j] for i, j in ij], 1),
@@ -581,6 +581,7 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
     with open(deck) as f:
         text = f.read()
     rows, pos = [], None
+    r = hnew = None                 # the last result and its new sizes (from step 1 on)
     for k in range(max_steps):
         base = os.path.join(wdir, "%s_%02d" % (name, k))
         cpu_mesh = gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos,

@@ -213,9 +213,9 @@ def _shape(nnode, xi, eta):
               0.5 * (1 - xi * xi) * (1 + eta), 0.5 * (1 - xi) * (1 - eta * eta)]
         return n
     # Q9: products of the 1-D quadratic Lagrange functions
-    def l(s):
+    def lag1d(s):
         return (0.5 * s * (s - 1), 1 - s * s, 0.5 * s * (s + 1))
-    lx, ly = l(xi), l(eta)
+    lx, ly = lag1d(xi), lag1d(eta)
     ij = [(0, 0), (2, 0), (2, 2), (0, 2), (1, 0), (2, 1), (1, 2), (0, 1), (1, 1)]
     return [lx[i] * ly[j] for i, j in ij]
 
