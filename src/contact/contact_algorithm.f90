@@ -980,8 +980,9 @@ contains
       type(contact_state_t), intent(inout) :: st
       logical, intent(out) :: done
       integer :: j
-      real(dp) :: viol, fmax, coulomb, tension, fabs, lamabs, fround
+      real(dp) :: viol, fmax, coulomb, tension, fabs, lamabs, fround, outside
       viol = 0.0_dp
+      outside = 0.0_dp
       coulomb = 0.0_dp
       fmax = 0.0_dp
       tension = 0.0_dp
@@ -999,14 +1000,27 @@ contains
             tension = max(tension, -st%fn(j))
             fabs = max(fabs, abs(st%fn(j)))
             lamabs = max(lamabs, abs(st%lam_n(j)))
-            if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_STICK) viol = max(viol, abs(st%dut(j)))
+            if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_STICK) then
+               viol = max(viol, abs(st%dut(j)))
+               ! a sticking pair within Tresca's bound mu lam_n of its multiplier but
+               ! beyond Coulomb's mu F_n of its force (the normal force fell in the
+               ! increment, and the penalty forces moved too little to show in the
+               ! penetration): outside the cone
+               outside = max(outside, abs(st%ft(j)) - md%mu*max(st%fn(j), 0.0_dp))
+            end if
             if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_SLIP) &
                coulomb = max(coulomb, abs(abs(st%ft(j)) - md%mu*st%fn(j)))
          end associate
       end do
       st%violation = viol
-      done = viol <= st%tol_pen .and. coulomb <= fround .and. tension <= fround
+      done = viol <= st%tol_pen .and. coulomb <= fround .and. tension <= fround .and. outside <= fround
       if (done) return
+      if (outside > fround .and. .not. st%coulomb) then
+         ! sticking pairs outside Coulomb's cone: the slip bound becomes mu F_n, and
+         ! the next evaluation (no multiplier update, no hold) lets them slip
+         st%coulomb = .true.
+         return
+      end if
       ! within tolerance but slipping pairs off mu F_n: Coulomb's bound from now on
       if (viol <= st%tol_pen .and. coulomb > fround) st%coulomb = .true.
       if (viol <= st%tol_pen .and. tension > fround .and. fabs > 0.5_dp*lamabs) then
@@ -1125,7 +1139,10 @@ contains
    !! the sum of the increments that loaded and unloaded it, forces of the
    !! run's scale `fscale` (the largest nodal force so far).  At zero load
    !! F_n is itself round-off, and 1e-10 of it would call round-off a
-   !! violation; for ordinary loads the floor is 1e-14 of the forces.
+   !! violation; for ordinary loads the floor is 1e-14 of the forces.  Ideal
+   !! pairs are accepted to 1e-10 of the largest normal force of the run so
+   !! far (st%fref, augment_multipliers): the iteration's tolerance is of that
+   !! force also once the load, and with it every F_n, has gone to zero.
    subroutine check_invariants(st, ve_old, nbad, msg, pairs, fscale)
       type(contact_state_t), intent(in) :: st
       real(dp), intent(in) :: ve_old(:)
@@ -1141,8 +1158,8 @@ contains
       msg = ''
       hit = .false.
       fmax = maxval([0.0_dp, abs(st%s%fn)])
-      tol = 1.0e-10_dp*fmax + roundoff_floor(fmax)
-      if (present(fscale)) tol = 1.0e-10_dp*fmax + roundoff_floor(max(fmax, fscale))
+      tol = 1.0e-10_dp*max(fmax, st%fref) + roundoff_floor(fmax)
+      if (present(fscale)) tol = 1.0e-10_dp*max(fmax, st%fref) + roundoff_floor(max(fmax, fscale))
       do j = 1, size(st%s)
          associate (s => st%s(j))
             write (b, '(i0)') j
