@@ -1015,12 +1015,9 @@ contains
       st%violation = viol
       done = viol <= st%tol_pen .and. coulomb <= fround .and. tension <= fround .and. outside <= fround
       if (done) return
-      if (outside > fround .and. .not. st%coulomb) then
-         ! sticking pairs outside Coulomb's cone: the slip bound becomes mu F_n, and
-         ! the next evaluation (no multiplier update, no hold) lets them slip
-         st%coulomb = .true.
-         return
-      end if
+      ! sticking pairs outside Coulomb's cone: the slip bound becomes mu F_n, and
+      ! the next evaluation after a solution lets them slip
+      if (outside > fround) st%coulomb = .true.
       ! within tolerance but slipping pairs off mu F_n: Coulomb's bound from now on
       if (viol <= st%tol_pen .and. coulomb > fround) st%coulomb = .true.
       if (viol <= st%tol_pen .and. tension > fround .and. fabs > 0.5_dp*lamabs) then
