@@ -967,9 +967,11 @@ contains
    !! bodies balance the current forces.  The increment is converged when every
    !! closed ideal pair penetrates by at most tol_pen (|u_n|: penetration, or a
    !! gap under load, the complementarity defect), every sticking one slipped
-   !! by at most tol_pen in the increment, every slipping one carries
-   !! |F_T| = mu F_n and no closed one a tension, both to 1e-10 of the largest
-   !! normal force of the increment or of the run.  Otherwise the multipliers
+   !! by at most tol_pen in the increment and is inside Coulomb's cone,
+   !! |F_T| <= mu F_n (it sticks within Tresca's bound mu lam_n, and a normal
+   !! force that fell in the increment leaves it outside), every slipping one
+   !! carries |F_T| = mu F_n and no closed one a tension, all three to 1e-10 of
+   !! the largest normal force of the increment or of the run.  Otherwise the multipliers
    !! take the current forces (lam <- F), the next evaluation keeps the modes,
    !! and `done` is false; within tolerance, slipping pairs off mu F_n switch
    !! the slip bound to Coulomb's for the rest of the increment, and pairs in a
@@ -1004,8 +1006,8 @@ contains
                viol = max(viol, abs(st%dut(j)))
                ! a sticking pair within Tresca's bound mu lam_n of its multiplier but
                ! beyond Coulomb's mu F_n of its force (the normal force fell in the
-               ! increment, and the penalty forces moved too little to show in the
-               ! penetration): outside the cone
+               ! increment by less than the penetration tolerance shows): outside
+               ! the cone, not converged; the update lam_n <- F_n lowers its bound
                outside = max(outside, abs(st%ft(j)) - md%mu*max(st%fn(j), 0.0_dp))
             end if
             if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_SLIP) &
@@ -1015,9 +1017,6 @@ contains
       st%violation = viol
       done = viol <= st%tol_pen .and. coulomb <= fround .and. tension <= fround .and. outside <= fround
       if (done) return
-      ! sticking pairs outside Coulomb's cone: the slip bound becomes mu F_n, and
-      ! the next evaluation after a solution lets them slip
-      if (outside > fround) st%coulomb = .true.
       ! within tolerance but slipping pairs off mu F_n: Coulomb's bound from now on
       if (viol <= st%tol_pen .and. coulomb > fround) st%coulomb = .true.
       if (viol <= st%tol_pen .and. tension > fround .and. fabs > 0.5_dp*lamabs) then
