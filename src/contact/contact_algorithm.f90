@@ -941,7 +941,10 @@ contains
                   ts = TS_SLIP
                   st%ft(jp) = sign(lim, trial_t)
                   md%sdir = sign(1.0_dp, trial_t)
-                  ksec = st%eps_t(jp)*min(max((st%ft(jp) - st%lam_t(jp))/(trial_t - st%lam_t(jp)), KT_SLIP_REG), 1.0_dp)
+                  ! (a multiplier outside the cone, |lam_T| > lim, gives no positive secant)
+                  ksec = KT_SLIP_REG*st%eps_t(jp)
+                  if (abs(trial_t - st%lam_t(jp)) > 0.0_dp) ksec = st%eps_t(jp)* &
+                     min(max((st%ft(jp) - st%lam_t(jp))/(trial_t - st%lam_t(jp)), KT_SLIP_REG), 1.0_dp)
                end if
                ! a new factorization when the secant moved by more than 10 %
                if (abs(ksec - md%ksec) > 0.1_dp*md%ksec) then
