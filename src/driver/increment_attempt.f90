@@ -195,7 +195,9 @@ contains
    !! contact and a restraint against translation loses its rotational support
    !! when the pairs still closed slip (K_T = 0) and only one of them is left, as
    !! the pairs open one after another on an unloading to zero.  The solutions
-   !! of both passes are counted.
+   !! of both passes are counted; if the second does not converge either, the
+   !! attempt fails with the singular system of the first (a body that nothing
+   !! holds, every pair slipping, keeps that message).
    subroutine attempt_increment(an, m, st, dlam, carry, fext_new, first, att, status)
       type(analysis_t), intent(inout) :: an
       type(model_t), intent(in) :: m
@@ -204,13 +206,19 @@ contains
       logical, intent(in) :: first
       type(attempt_t), intent(inout) :: att
       type(status_t), intent(inout) :: status
+      type(status_t) :: singular
       integer :: spent
       call attempt_pass(an, m, st, dlam, carry, fext_new, first, .false., att, status)
       if (status%code /= STAT_SINGULAR .or. .not. (an%has_contact .and. an%returning .and. st%has_rough)) return
       spent = att%solutions
+      singular = status
       status = status_t()
       call attempt_pass(an, m, st, dlam, carry, fext_new, first, .true., att, status)
       att%solutions = att%solutions + spent
+      ! no equilibrium with the regularising springs either (a body that really is
+      ! free: every pair slipping with nothing else holding it): the singular system
+      ! is the diagnosis, with its node and dof
+      if (.not. (status%ok() .and. att%converged)) status = singular
    end subroutine attempt_increment
 
    !> One pass of attempt_increment; slip_reg: every pair in slip keeps K_T^e.
