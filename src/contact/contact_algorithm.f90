@@ -71,7 +71,7 @@ module contact_algorithm
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
              pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
-             start_force_normal, frozen_pairs, tangential_drift, drop_regularisation
+             start_force_normal, frozen_pairs, tangential_drift, drop_regularisation, regularise_slip
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: MAX_SWITCH
 
@@ -154,6 +154,8 @@ module contact_algorithm
       logical :: chatter = .false.                !! a pair exhausted its mode changes
       logical :: regularise = .true.              !! RETURN: a pair slipping at vanishing normal force keeps
                                                   !! K_T^e (vanishing_slip_kt) until drop_regularisation
+      logical :: regularise_slip = .false.        !! RETURN: every closed pair in slip keeps K_T^e (regularise_slip:
+                                                  !! the system was singular without)
       ! ideal contact (augmented Lagrangian)
       logical :: has_ideal = .false.              !! some interface is IDEAL
       logical :: has_rough = .false.              !! some interface is ROUGH
@@ -299,6 +301,7 @@ contains
       st%violation = 0.0_dp
       st%coulomb = .false.
       st%regularise = .true.
+      st%regularise_slip = .false.
       do j = 1, size(st%s)
          associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             md = pair_mode_t()
@@ -402,17 +405,30 @@ contains
       end if
    end function reload_from_zero
 
-   !> Half-width of the band around the zero-force point u_thr of a pair's
-   !! unloading branch in which the pair counts as touching at the point
-   !! (RETURN): |u - u_thr| <= eps^max(1, m2) (u_A - u_thr), eps = 1e-9.  On the
-   !! branch, (u - u_thr)/(u_A - u_thr) = (p/p_A)^m2, so within the band both the
-   !! law's force and the touching spring's, A p_A (u - u_thr)/(u_A - u_thr), are
-   !! at most eps A p_A: round-off of the pair's force scale, whatever m2.
-   pure real(dp) function touching_band(ifc, md) result(b)
+   !> The band around the zero-force point u_thr of a pair's unloading branch in
+   !! which the pair counts as touching at the point (RETURN): from
+   !! u_thr - eps^max(1, m2) t to u_thr + eps^m2 t (t = u_A - u_thr the branch's
+   !! travel, eps = 1e-9); `above` selects the half-width above the point.  On the
+   !! branch, (u - u_thr)/t = (p/p_A)^m2, so throughout the band the law's force is
+   !! at most eps A p_A, round-off of the pair's force scale, whatever m2; below the
+   !! point so is the touching spring's, A p_A (u - u_thr)/t, and a touching pair
+   !! carries it.  Above it, on a convex branch (m2 < 1), the band is wider than
+   !! that: from eps t to eps^m2 t a touching pair carries the law's force with the
+   !! spring's stiffness.  The chord stiffness of the branch vanishes with the
+   !! force there (as (u - u_thr)^(1/m2 - 1)), and a body resting on such a pair
+   !! alone is placed by Newton only to the round-off of its forces over that
+   !! stiffness, not to the correction tolerance (TOLU); the spring's stiffness
+   !! places it to the round-off over the spring's.
+   pure real(dp) function touching_band(ifc, md, above) result(b)
       type(interface_t), intent(in) :: ifc
       type(pair_mode_t), intent(in) :: md
+      logical, intent(in) :: above
       real(dp), parameter :: eps = 1.0e-9_dp
-      b = eps**max(1.0_dp, ifc%m2)*max(md%ua - md%uthr, 0.0_dp)
+      if (above) then
+         b = eps**ifc%m2*max(md%ua - md%uthr, 0.0_dp)
+      else
+         b = eps**max(1.0_dp, ifc%m2)*max(md%ua - md%uthr, 0.0_dp)
+      end if
    end function touching_band
 
    !> Closure at which an open pair closes: 0, or the residual closure after unloading.
@@ -574,7 +590,8 @@ contains
                   fn = s%fn + md%kn*dun
                end if
                if (returning .and. md%on_unloading .and. s%closed .and. .not. md%newly_closed .and. &
-                   abs(u - md%uthr) <= touching_band(ifc, md)) then
+                   u - md%uthr <= touching_band(ifc, md, st%regularise_slip) .and. &
+                   md%uthr - u <= touching_band(ifc, md, .false.)) then
                   ! RETURN, at the zero-force point of its unloading branch to round-off, on either
                   ! side (touching_band): touching there, on the secant from A to the point,
                   ! K (u - u_thr), which the next solution settles; no change of state.  The
@@ -582,11 +599,17 @@ contains
                   ! for m2 > 1): Newton on it cannot carry the out-of-balance force that the
                   ! round-off of a solution leaves on a body held by such pairs (1e-9 of the
                   ! increment's force for a stiff block on soft pairs), and stalls.  The
-                  ! committed force is the law's at the final closure (commit_increment)
+                  ! committed force is the law's at the final closure (commit_increment).
+                  ! Above the point beyond the spring's band (m2 < 1: eps t < u - u_thr <=
+                  ! eps^m2 t) the pair keeps the law's force, at most eps A p_A, with the
+                  ! spring's stiffness: the vanishing chord would place a body resting on it
+                  ! only to the round-off of its forces over that chord; the spring's force
+                  ! there could be balanced by the tension of a pair held below its point
+                  ! (up to 1e-6 A p_A), which the committed forces would not be
                   md%touching = .true.
                   held_now = .true.
                   md%kn = pr%area*md%pa/max(md%ua - md%uthr, tiny(1.0_dp))
-                  fn = md%kn*(u - md%uthr)
+                  if (u - md%uthr <= touching_band(ifc, md, .false.)) fn = md%kn*(u - md%uthr)
                else if (returning .and. ifc%m2 > 1.0_dp .and. u <= md%uthr - utol .and. s%closed .and. s%fn > 0.0_dp .and. &
                    .not. (md%held .or. md%newly_closed) .and. may_switch) then
                   ! RETURN, a loaded pair overshooting its zero-force point (a Newton step on a
@@ -672,6 +695,7 @@ contains
                   ! solution), or the secant tangential_return gave a cycling pair
                   if (.not. md%tstable) call set_kt(ifc, md)
                   if (st%regularise) call vanishing_slip_kt(s, md, fn)
+                  if (st%regularise_slip .and. md%tstate == TS_SLIP .and. .not. md%tstable) md%kt = md%kte
                else
                   call tangential_explicit(ifc, s, md, dut, fn, may_switch, ft, changed(j), st%chatter)
                end if
@@ -827,6 +851,24 @@ contains
          end associate
       end do
    end subroutine drop_regularisation
+
+   !> The system of an increment was singular (RETURN, rough pairs): in its next
+   !! attempt every closed rough pair in slip keeps K_T^e in the solve, a
+   !! regularising spring that carries no force (its F_T stays the law's), and
+   !! the springs of vanishing slip are kept throughout (no drop_regularisation).
+   !! A body held only by the contact and a restraint against translation (the
+   !! top edge of a block held in x) is turned about that edge by the normal
+   !! forces of its pairs alone once they slip (K_T = 0): with one pair left
+   !! closed, as the load falls to zero and the pairs open one after another,
+   !! nothing holds it.  The converged state is the law's all the same (F_T =
+   !! mu F_n in slip).  Called after begin_increment.
+   pure subroutine regularise_slip(cdef, st)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      if (cdef%opts%update /= UPDATE_RETURN) return
+      st%regularise_slip = .true.
+      st%regularise = .true.
+   end subroutine regularise_slip
 
    !> K_T of a closed rough pair (set by its mode before), except that a pair slipping on its
    !! unloading branch at a normal force fn of at most 1e-3 of its committed force

@@ -17,7 +17,7 @@ module increment_attempt
    use contact_assembly, only: contact_springs_t
    use contact_types, only: contact_options_t, contact_pair_t
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, augment_multipliers, &
-                                drop_regularisation
+                                drop_regularisation, regularise_slip
    use contact_start, only: increment_pressure
    use model, only: model_t
    use step_audit, only: check_finite_springs
@@ -187,12 +187,48 @@ contains
    !! balance (or the cap).  Nothing is committed here; the contact system
    !! gives the solution at the contact equations (at least), `recover` the
    !! full increment once the attempt is accepted.
+   !!
+   !! Rough pairs with the Newton update: an attempt whose system turns
+   !! singular is made once more from the committed state with every pair in
+   !! slip keeping K_T^e in the solve, a regularising spring that carries no
+   !! force (contact_algorithm's regularise_slip): a body held only by the
+   !! contact and a restraint against translation loses its rotational support
+   !! when the pairs still closed slip (K_T = 0) and only one of them is left, as
+   !! the pairs open one after another on an unloading to zero.  The solutions
+   !! of both passes are counted; if the second does not converge either, the
+   !! attempt fails with the singular system of the first (a body that nothing
+   !! holds, every pair slipping, keeps that message).
    subroutine attempt_increment(an, m, st, dlam, carry, fext_new, first, att, status)
       type(analysis_t), intent(inout) :: an
       type(model_t), intent(in) :: m
       type(contact_state_t), intent(inout) :: st
       real(dp), intent(in) :: dlam(:), carry(:), fext_new(:, :)
       logical, intent(in) :: first
+      type(attempt_t), intent(inout) :: att
+      type(status_t), intent(inout) :: status
+      type(status_t) :: singular
+      integer :: spent
+      call attempt_pass(an, m, st, dlam, carry, fext_new, first, .false., att, status)
+      if (status%code /= STAT_SINGULAR .or. .not. (an%has_contact .and. an%returning .and. st%has_rough)) return
+      spent = att%solutions
+      singular = status
+      status = status_t()
+      call attempt_pass(an, m, st, dlam, carry, fext_new, first, .true., att, status)
+      att%solutions = att%solutions + spent
+      ! no equilibrium with the regularising springs either (a body that really is
+      ! free: every pair slipping with nothing else holding it): the singular system
+      ! is the diagnosis, with its node and dof
+      if (.not. (status%ok() .and. att%converged)) status = singular
+   end subroutine attempt_increment
+
+   !> One pass of attempt_increment; slip_reg: every pair in slip keeps K_T^e.
+   subroutine attempt_pass(an, m, st, dlam, carry, fext_new, first, slip_reg, att, status)
+      type(analysis_t), intent(inout) :: an
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(inout) :: st
+      real(dp), intent(in) :: dlam(:), carry(:), fext_new(:, :)
+      logical, intent(in) :: first
+      logical, intent(in) :: slip_reg            !! every pair in slip keeps K_T^e (regularise_slip)
       type(attempt_t), intent(inout) :: att
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: rhs(:), ddu(:, :), rvec(:, :), rpred(:, :)
@@ -223,6 +259,7 @@ contains
          ! the pressure a reload from zero force is expected to bring (0: none)
          if (.not. first .and. st%has_rough) call increment_pressure(m, an%fcase, dlam, st)
          call begin_increment(m%contact, st, first)
+         if (slip_reg) call regularise_slip(m%contact, st)
          call an%springs%start_forces(m%contact, st, rvec, rpred, rhs)
       end if
 
@@ -233,7 +270,8 @@ contains
       if (an%has_contact) maxit = an%maxrep
       do iter = 1, maxit
          ! half the solutions spent: the modes' own stiffnesses for the rest (no regularising springs)
-         if (an%has_contact .and. iter == maxit/2 + 1) call drop_regularisation(m%contact, st, need_matrix)
+         if (an%has_contact .and. iter == maxit/2 + 1 .and. .not. st%regularise_slip) &
+            call drop_regularisation(m%contact, st, need_matrix)
          if (need_matrix) then
             call set_system(an, m, st, status)
             if (.not. status%ok()) return
@@ -317,7 +355,7 @@ contains
             need_matrix = .true.
          end if
       end subroutine update_modes
-   end subroutine attempt_increment
+   end subroutine attempt_pass
 
    !> Put the springs of the current modes into the contact system.
    subroutine set_system(an, m, st, status)
