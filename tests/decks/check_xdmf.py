@@ -67,34 +67,29 @@ def check_load_factor(g, step):
 def check_node_attributes(g, base, npoints):
     """Every node-centred attribute: a plain HDF DataItem (no hyperslab, no
     function: the Xdmf3 readers drop them) of one row per point."""
+    return check_attributes(g, base, npoints, lambda c: c not in ("Grid", "Cell"), "point")
+
+
+def check_attributes(g, base, nrows, centred, per):
+    """The attributes of grid g whose Center passes `centred`: each a plain HDF DataItem of
+    nrows rows (one value per `per`); their names."""
     names = []
     for att in g.findall("Attribute"):
-        if att.get("Center") in ("Grid", "Cell"):
+        if not centred(att.get("Center")):
             continue
         item = att.find("DataItem")
         if item.get("ItemType") not in (None, "Uniform") or item.get("Format") != "HDF":
             fail(f"attribute {att.get('Name')} is not a plain HDF DataItem")
         ds = hdf_dataset(item, base)
-        if ds.shape[0] != npoints:
-            fail(f"attribute {att.get('Name')} is not one value per point")
+        if ds.shape[0] != nrows:
+            fail(f"attribute {att.get('Name')} is not one value per {per}")
         names.append(att.get("Name"))
     return names
 
 
 def check_cell_attributes(g, base, nelem):
     """Every cell-centred attribute: a plain HDF DataItem of one row per element."""
-    names = []
-    for att in g.findall("Attribute"):
-        if att.get("Center") != "Cell":
-            continue
-        item = att.find("DataItem")
-        if item.get("ItemType") not in (None, "Uniform") or item.get("Format") != "HDF":
-            fail(f"attribute {att.get('Name')} is not a plain HDF DataItem")
-        ds = hdf_dataset(item, base)
-        if ds.shape[0] != nelem:
-            fail(f"attribute {att.get('Name')} is not one value per element")
-        names.append(att.get("Name"))
-    return names
+    return check_attributes(g, base, nelem, lambda c: c == "Cell", "element")
 
 
 def check_bodies(g, base, npoin, nelem, step):

@@ -40,28 +40,26 @@ def _field(line, a, b):
     return line[a - 1:b].strip()
 
 
-def _int(line, a, b, where, name, default=None):
+def _number(line, a, b, where, name, default, convert, what):
+    """The field in columns a-b converted by `convert` ('what' names it in the message)."""
     s = _field(line, a, b)
     if not s:
         if default is None:
             raise RefineError("%s: field %s (columns %d-%d) is blank" % (where, name, a, b))
         return default
     try:
-        return int(s)
+        return convert(s)
     except ValueError:
-        raise RefineError("%s: field %s (columns %d-%d): expected an integer, found %r" % (where, name, a, b, s))
+        raise RefineError("%s: field %s (columns %d-%d): expected %s, found %r" % (where, name, a, b, what, s))
+
+
+def _int(line, a, b, where, name, default=None):
+    return _number(line, a, b, where, name, default, int, "an integer")
 
 
 def _real(line, a, b, where, name, default=None):
-    s = _field(line, a, b)
-    if not s:
-        if default is None:
-            raise RefineError("%s: field %s (columns %d-%d) is blank" % (where, name, a, b))
-        return default
-    try:
-        return float(s.replace("D", "e").replace("d", "e"))
-    except ValueError:
-        raise RefineError("%s: field %s (columns %d-%d): expected a real, found %r" % (where, name, a, b, s))
+    return _number(line, a, b, where, name, default,
+                   lambda s: float(s.replace("D", "e").replace("d", "e")), "a real")
 
 
 class CardDeck:
