@@ -151,7 +151,7 @@ def punch(path, column=2, nnode=4, hp=100.0, hf=100.0, refine=1, nincs=20, updat
         "load 5 %% in the first increment, then %d equal increments to p0" % (nincs - 1),
         ("then unloaded in %d equal increments to 5 %% and in 5 more to 0.1 %% of p0 (unloading branch" % (nincs - 1))
         if unload else "(the paper does not give the load history; 20 increments reproduce Table 1).",
-        ("c_n2 = %g, m2 = 0.5; at zero load every pair would open and the punch would be free)." % (
+        ("c_n2 = %g, m2 = 0.5; the explicit scheme can lose the punch, held by the springs alone, at zero load)." % (
             cn2 if cn2 is not None else 0.5)) if unload else "",
         "Case: %s; %supdate %s%s." % (label if column else fr, "ideal contact; " if ideal and column != 5 else "",
                                         update,
