@@ -139,6 +139,12 @@ class Step:
         """A contact quantity per pair: pressure, shear, force_normal, closure, slip, resolution, ..."""
         return self._read("contact", name)
 
+    def contact_names(self):
+        """The names of the increment's contact datasets (without reading them)."""
+        with h5py.File(self._result.path, "r") as f:
+            g = f["increments"][self.name]
+            return list(g["contact"].keys()) if "contact" in g else []
+
     def contact_all(self):
         """Every contact dataset of the increment, as a dict."""
         with h5py.File(self._result.path, "r") as f:
@@ -199,10 +205,39 @@ def dataset(path, name):
     """The dataset `name` (a path inside the file, e.g. "/increments/00003/displacement", as the
     XDMF sidecar names it) of the result file `path`, read whole.  KeyError if the file holds
     no dataset of that name."""
-    with h5py.File(str(path), "r") as f:
-        if name not in f or not isinstance(f[name], h5py.Dataset):
-            raise KeyError("%s holds no dataset %s" % (path, name))
-        return f[name][()]
+    with DatasetReader(path) as read:
+        return read(name)
+
+
+class DatasetReader:
+    """Datasets of one result file read by their paths, the file opened once (for a reader of
+    thousands of increments: `dataset` opens the file per call).  A context manager:
+
+        with DatasetReader(path) as read:
+            u = read("/increments/00003/displacement")
+    """
+
+    def __init__(self, path):
+        self.path = str(path)
+        self._file = h5py.File(self.path, "r")
+
+    def __call__(self, name):
+        try:
+            obj = self._file[name]          # one lookup (a test `name in f` first doubles it)
+        except KeyError:
+            obj = None
+        if not isinstance(obj, h5py.Dataset):
+            raise KeyError("%s holds no dataset %s" % (self.path, name))
+        return obj[()]
+
+    def close(self):
+        self._file.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
 
 
 def first_nonfinite(path):
