@@ -196,10 +196,12 @@ class SampleFile(unittest.TestCase):
                     "--pressure-range", "3", "8", "--out", out, "--no-convergence")
         print(r.stdout, r.stderr)
         self.assertEqual(r.returncode, 0, r.stderr)
-        m = re.search(r"^NORMAL\s+(\S+)\s+(\S+)\s*$", r.stdout, re.M)
+        m = re.search(r"^NORMAL\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)\s*$", r.stdout, re.M)
         self.assertIsNotNone(m)
         self.assertIn("64 x 64 grid points, 0.4 x 0.4 mm", r.stdout)
         c, mm = float(m.group(1)), float(m.group(2))
+        # elastic: unloading along the loading curve
+        self.assertEqual((m.group(3), m.group(4)), (m.group(1), m.group(2)))
         # the card reproduces the BEM curve the run wrote (its CSV, in the cards' units)
         rows = np.loadtxt(os.path.join(out, "sample_bem.csv"), delimiter=",", usecols=(0, 1), comments="#",
                           skiprows=3)

@@ -367,6 +367,13 @@ def calibrate(surface, path, Es, pmin, pmax, units, hardness=None, points=16, ou
         "E* = %.8g N/mm2%s; closure from first touch; area_ratio = contact area / sample area"
         % (Es, ", hardness %.8g N/mm2" % hardness if hardness else ", elastic")])
     tf.fit = cal.fit_normal(tf.csv, units, loading_only=not hardness, same_exponent=same_exponent)
+    if not hardness:
+        # elastic asperities unload along the loading curve: c_n2 = c_n, m2 = m (the program's
+        # default c_n2 = c_n/2 would invent a residual closure)
+        c, m = tf.fit.value("c_n"), tf.fit.value("m")
+        tf.fit.normal_card = tf.fit.cards[-1] = cal.card("NORMAL", c, m, c, m)
+        tf.fit.notes.append("elastic: the card unloads along the loading curve (CN2 = CN, M2 = M, no residual "
+                            "closure); --hardness for asperities that yield")
     L = branch == "L"
     tf.notes.append("rms height %.4g um, rms slope %.4g; contact area A/A0 from %.3g (p = %.4g) to %.3g (p = %.4g %s), "
                     "%d to %d spots"
