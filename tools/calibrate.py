@@ -27,7 +27,7 @@ the scan, ContactMechanics solves the rough contact by FFT boundary elements), t
 `normal` data; it runs in its own virtual environment (tools/setup_topography.sh, created on
 first use).  Exit code 2 also for a surface that cannot be read, or is too small or too coarse
 for the pressure range; 4: the calibration is doubtful (the power law does not hold over the
-range, or the constants move with the grid or the sample size).
+range, or the constants move with the grid or the sample size); 1: the BEM did not converge.
 """
 import argparse
 import math
@@ -163,6 +163,9 @@ def topography(args, units):
     except cal.DataError as e:
         print(str(e), file=sys.stderr)
         return 2
+    except RuntimeError as e:                 # the BEM did not converge
+        print("calibrate.py: error: %s" % e, file=sys.stderr)
+        return 1
     tf.notes.insert(0, "E* = %.6g %s from E1 = %g, nu1 = %g, E2 = %g, nu2 = %g (%s)"
                     % (Es / punit, pname, args.E1, args.nu1, args.E1 if args.E2 is None else args.E2,
                        args.nu1 if args.nu2 is None else args.nu2, pname))

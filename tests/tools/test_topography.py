@@ -232,6 +232,64 @@ class SampleFile(unittest.TestCase):
                                    r"p = 3\.05915 kgf/cm2")
         self.assertFalse(os.path.exists(os.path.join(WORK, "topography", "coarse", "sample_bem.csv")))
 
+    def test_doubtful_range(self):
+        # to 60 N/mm2 the contact nears full contact (A/A0 > 0.5) and the closure saturates: no
+        # power law over the range, exit 4, the range where it holds named, the cards still written
+        r = run_cli(os.path.join(DATA, "sample.x3p"), "--E1", "3000", "--nu1", "0.4", "--pressure-unit", "N/mm2",
+                    "--pressure-range", "3", "60", "--out", os.path.join(WORK, "topography", "doubtful"),
+                    "--no-convergence", "--no-plot")
+        print(r.stdout, r.stderr)
+        self.assertEqual(r.returncode, 4, r.stdout + r.stderr)
+        self.assertRegex(r.stdout, r"doubtful: the power law u = c_n p\^m does not fit the BEM loading curve over "
+                                   r"30\.59 to 611\.8 kgf/cm2: worst relative deviation [0-9.]+ %; it holds to 3 % "
+                                   r"from p = 30\.59 to [0-9.]+ kgf/cm2")
+        self.assertIn("NORMAL", r.stdout)
+        self.assertIn("calibrate.py: the calibration is doubtful (exit 4)", r.stderr)
+
+    def test_convergence_of_a_small_sample(self):
+        # the sample is a few of its longest wavelengths across: its quarters give other constants
+        r = run_cli(os.path.join(DATA, "sample.x3p"), "--E1", "3000", "--nu1", "0.4", "--pressure-unit", "N/mm2",
+                    "--pressure-range", "3", "8", "--out", os.path.join(WORK, "topography", "convergence"),
+                    "--no-plot")
+        print(r.stdout, r.stderr)
+        self.assertEqual(r.returncode, 4, r.stdout + r.stderr)
+        self.assertRegex(r.stdout, r"convergence, half resolution \(1 sample\(s\)\): c_n ")
+        self.assertRegex(r.stdout, r"convergence, quarters \(\d sample\(s\)")
+        self.assertRegex(r.stdout, r"doubtful: the constants change by up to [0-9.]+ % between the full sample")
+
+    def test_two_surfaces_and_units(self):
+        # the scan against itself: twice the heights, E* of two equal bodies; the same curve in
+        # N_UM and KGF_UM: c_n(N_UM) = c_n(KGF_UM) (1 / 0.0980665)^m, m the same
+        out = os.path.join(WORK, "topography", "two")
+        cards = {}
+        for u in ("KGF_UM", "N_UM"):
+            r = run_cli(os.path.join(DATA, "sample.x3p"), os.path.join(DATA, "sample.x3p"), "--E1", "3000", "--nu1",
+                        "0.4", "--E2", "6000", "--nu2", "0.3", "--pressure-unit", "N/mm2", "--pressure-range", "8",
+                        "20", "--units", u, "--out", out, "--no-convergence", "--no-plot")
+            print(r.stdout, r.stderr)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            es = 1.0 / ((1 - 0.4 ** 2) / 3000 + (1 - 0.3 ** 2) / 6000)
+            self.assertIn("E* = %.6g N/mm2" % es, r.stdout)
+            self.assertIn("rms height 1.025 um", r.stdout)          # twice the single scan's 0.5123
+            m = re.search(r"^NORMAL\s+(\S+)\s+(\S+)", r.stdout, re.M)
+            cards[u] = (float(m.group(1)), float(m.group(2)))
+        (ck, mk), (cn, mn) = cards["KGF_UM"], cards["N_UM"]
+        self.assertAlmostEqual(mk, mn, delta=2e-7)                  # the cards' seven digits
+        self.assertLess(abs(cn / (ck * (1 / 0.0980665) ** mk) - 1), 1e-6)
+
+    def test_power_law_range(self):
+        # a closure that is logarithmic below p = 1 and a power law above: the range found is
+        # the power law's (to within the points' spacing), and the whole range is refused
+        p = np.geomspace(0.01, 100.0, 41)
+        u = np.where(p < 1.0, 1.0 + 0.2 * np.log(p), p ** 0.3)
+        self.assertGreater(np.max(np.abs(tp._power_fit(p, u)[2])), tp.POWER_LAW_TOL)
+        i, j, c, m, worst = tp.power_law_range(p, u)
+        self.assertEqual(j, 40)
+        self.assertLessEqual(p[i], 1.0)
+        self.assertGreater(p[i], 0.5)
+        self.assertAlmostEqual(m, 0.3, delta=0.01)
+        self.assertLessEqual(worst, tp.POWER_LAW_TOL)
+
     def test_two_surfaces_must_share_the_grid(self):
         s1 = tp.Surface(np.zeros((64, 64)), (1.0, 1.0), "a")
         s2 = tp.Surface(np.zeros((64, 32)), (1.0, 0.5), "b")
