@@ -19,7 +19,9 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_history_compare.py 
   replacing UPDATE, a deck without CONTACT refused; the varied deck read by the program has
   the law it asks for;
 * tools/compare.py: the numbers of its report (six significant digits) agree with the HDF5
-  files read here to 1e-5 relative; a bad --vary gives exit code 2 and a message.
+  files read here to 1e-5 relative, the mean u_T of the closed pairs among them; a bad --vary
+  gives exit code 2 and a message; a run that failed half way is named, exit code 3, and the
+  runs are compared at the last state both reached; round-off gets no per cent.
 """
 
 import os
@@ -189,7 +191,9 @@ class TestCompare(Work):
             c = res.last.contact_all()
             closed = c["normal_state"] > 0
             self.assertTrue(closed.any())
+            area = res.contact.area[closed]
             want = {
+                "mean tangential displacement u_T of the closed pairs": np.sum(area * c["slip"][closed]) / area.sum(),
                 "peak pressure": np.max(c["pressure"][closed]),
                 "total normal force": np.sum(c["force_normal"]),
                 "total tangential force": np.sum(c["force_tangential"]),
@@ -203,10 +207,49 @@ class TestCompare(Work):
                 got = float(table[key][col])
                 self.assertAlmostEqual(got, float(value), delta=1e-5 * max(abs(float(value)), 1e-300), msg=key)
                 checked += 1
-        self.assertEqual(checked, 14)
+        self.assertEqual(checked, 16)
         for png in ("compare_last.png", "compare_history.png"):
             self.assertIn("(%s)" % png, md)
             self.assertTrue(os.path.exists(os.path.join(out, png)))
+
+    def test_failed_run_like_states_and_round_off(self):
+        """A run that failed half way: named, exit code 3, compared at the last state both runs
+        reached (not its last increment against the other's); tangential forces of round-off size
+        get no per cent.  The runs are result files built here (test_loops.write_result), handed
+        out by a stand-in for the program that copies the file its deck names and exits with the
+        deck's code."""
+        from test_loops import normal_cycle_steps, write_result
+        steps = normal_cycle_steps()
+        for s_, ft in zip(steps, (1e-15, -2e-15, 3e-15, 1e-15, -1e-15, 2e-15, 1e-15)):
+            s_["shear"] = np.array([ft, 0.0])
+        other = [dict(s_, shear=np.array([-8.21e-15, 0.0])) for s_ in steps[:5]]
+        good = write_result(os.path.join(self.work, "good_src.h5"), steps)
+        bad = write_result(os.path.join(self.work, "bad_src.h5"), other, status="failed at increment 6: no convergence")
+        fake = os.path.join(self.work, "fake_kontakt2d")
+        with open(fake, "w") as f:
+            f.write("#!%s\nimport shutil, sys\nsrc, code = open(sys.argv[1]).read().split()\n"
+                    "shutil.copy(src, sys.argv[sys.argv.index('-o') + 1])\nsys.exit(int(code))\n" % sys.executable)
+        os.chmod(fake, 0o755)
+        decks = []
+        for name, src, code in (("full", good, 0), ("cut", bad, 3)):
+            decks.append(os.path.join(self.work, name + ".dat"))
+            with open(decks[-1], "w") as f:
+                f.write("%s %d\n" % (src, code))
+        out = os.path.join(self.work, "cmp_failed")
+        p = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "compare.py"), decks[0], decks[1],
+                            "-o", out, "--exe", fake], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 3, p.stdout + p.stderr)
+        self.assertIn("the run cut failed", p.stderr)
+        with open(os.path.join(out, "report.md")) as f:
+            md = f.read()
+        self.assertIn("**The run cut failed** (exit code 3, status: failed at increment 6", md)
+        self.assertIn("increment 5 of full and 5 of cut (like states: the last state both runs reached)", md)
+        rows = {ln.split("|")[1].strip().split(" [")[0]: [c.strip() for c in ln.split("|")[2:5]]
+                for ln in md.splitlines() if ln.startswith("| ") and ln.count("|") == 5}
+        self.assertEqual(rows["load factor"], ["0.7", "0.7", "equal"])
+        self.assertEqual(rows["peak pressure"][2], "equal")
+        self.assertEqual(rows["total tangential force"][2], "equal to round-off")
+        self.assertIn("mean tangential displacement u_T of the closed pairs", rows)
 
     def test_bad_vary(self):
         p = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "compare.py"), TANGENTIAL,

@@ -192,20 +192,22 @@ def pct(a, b, floor=0.0):
 
 
 def difference(a, b, floor, fmt):
-    """The difference column: per cent where both values are above round-off (`floor`), the
-    absolute difference where one is not and they differ by more than it, "round-off" where
-    both are (their difference is noise), "-" for non-numbers."""
+    """The difference column: "equal" for equal values, per cent where both values are above
+    round-off (`floor`), the absolute difference where one is not and they differ by more than
+    it, "equal to round-off" where they differ by less, "-" for non-numbers."""
     try:
         a, b = float(a), float(b)
     except (TypeError, ValueError):
         return "-"
     if math.isnan(a) or math.isnan(b):
         return "-"
+    if a == b:
+        return "equal"
     p = pct(a, b, floor)
     if p:
         return p
     if abs(b - a) <= floor:
-        return "equal" if a == b else "equal to round-off"
+        return "equal to round-off"
     return "%+.3g (absolute)" % (b - a)
 
 

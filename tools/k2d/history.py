@@ -27,10 +27,11 @@ Definitions (docs/results-format.md names the datasets; docs/history.md these fi
 * slip zone: the pairs in slip (tangential state 2) that carry a normal force (F_n above
   1e-12 of the largest pair force of the run: a pair at zero force holds nothing tangentially
   and is not "slipping"); its share of the closed area.
-* what changes in a step (h.kind): the normal load when the total normal force changes by more
-  than 1e-6 of its largest value (loading / unloading: the sign of the change of lam, else of
-  the force), else the tangential displacement when the mean u_T of the closed pairs changes by
-  more than 1e-6 of its largest magnitude (tangential + / -), else nothing (holding).  The
+* what changes in a step (h.kind): of the total normal force and the mean u_T of the closed
+  pairs, the one whose change relative to its largest magnitude over the run (for u_T: the
+  largest of u_T, closure and approach) is larger and above 1e-6: the normal load (loading / unloading: the sign of the change of lam, else of the
+  force) or the tangential displacement (tangential + / -); when neither changes, the sign of
+  the change of lam (a load change with the pairs open or at zero force), else holding.  The
   unloaded origin (zero load, zero displacement) is the state before the first increment.
 
 Reads the results through k2d.results only.
@@ -139,16 +140,23 @@ class History:
         """What changes in every step (see the module's text)."""
         fn = np.array([0.0] + [float(f["force_normal"].sum()) for f in self._fields])
         ut = np.array([0.0] + [self.mean_slip(k) for k in range(len(self.steps))])
-        fn_tol = 1e-6 * max(np.max(np.abs(fn)), np.finfo(float).tiny)
-        ut_tol = 1e-6 * np.max(np.abs(ut)) if np.max(np.abs(ut)) > 0 else np.inf
+        fn_max = max(np.max(np.abs(fn)), np.finfo(float).tiny)
+        # u_T is measured against the run's displacements at the interface (the largest of u_T,
+        # the closures and the approach): in a purely normal history u_T is round-off
+        closure = max(float(np.max(np.abs(f["closure"]))) if f["closure"].size else 0.0 for f in self._fields)
+        ut_max = max(np.max(np.abs(ut)), closure, float(np.max(np.abs(self.approach))))
+        ut_max = ut_max if ut_max > 0 else np.inf
         out = []
         for k in range(len(self.steps)):
-            dfn, dut = fn[k + 1] - fn[k], ut[k + 1] - ut[k]
-            if abs(dfn) > fn_tol:
-                d = self.direction[k] or (1 if dfn > 0 else -1)
+            rel_n, rel_t = abs(fn[k + 1] - fn[k]) / fn_max, abs(ut[k + 1] - ut[k]) / ut_max
+            if rel_n > 1e-6 and rel_n >= rel_t:
+                d = self.direction[k] or (1 if fn[k + 1] > fn[k] else -1)
                 out.append("loading" if d > 0 else "unloading")
-            elif abs(dut) > ut_tol:
-                out.append("tangential +" if dut > 0 else "tangential -")
+            elif rel_t > 1e-6:
+                out.append("tangential +" if ut[k + 1] > ut[k] else "tangential -")
+            elif self.direction[k]:
+                # the load changes but not the interface's forces (pairs open at zero force)
+                out.append("loading" if self.direction[k] > 0 else "unloading")
             else:
                 out.append("holding")
         return np.array(out, dtype=object)
