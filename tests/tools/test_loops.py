@@ -13,7 +13,8 @@ documented layout (docs/results-format.md) -- so each case is known exactly:
   increment on the law (1e-9 of mu F_n), a reversal visible as a loop of non-zero area;
   the interface's total F_T and mean u_T the same from the program's attributes and computed from
   the pairs (1e-12: two sums of the same numbers);
-* a pair in state "slip" at zero normal force is not a slipping pair (figures, stage table);
+* a pair in state "slip" at zero normal force is not a slipping pair (figures, stage table, the
+  result plot's contact panel);
 * the stage names of a tangential cycle under held pressure: loading, tangential loading (+),
   tangential reversal (-), tangential reversal (+) -- not "holding";
 * like_states: a failed run is compared at the last state both reached; no common state gives a
@@ -43,6 +44,7 @@ from k2d.build import ROOT  # noqa: E402
 from k2d.compare import ROUND_OFF, difference, like_states, pct  # noqa: E402
 from k2d.history import History  # noqa: E402
 from k2d.history_plot import plot_approach, plot_pairs, stage_table  # noqa: E402
+from k2d.plot import plot_result  # noqa: E402
 from k2d.results import Result  # noqa: E402
 
 CN, M, CN2, M2 = 2e-3, 0.5, 1e-4, 3.0      # model units; p* = (cn/cn2)^(1/(m2-m)) = 3.3 > the pressures used
@@ -104,6 +106,7 @@ def write_result(path, steps, npair=2, status="completed", gap=0.0, cycles=None,
             u[3 * npair:, 1] = -s.get("approach", 0.0)
             u[2 * npair:, 0] = np.mean(s.get("slip", np.zeros(npair)))
             g["displacement"] = u
+            g["stress_nodal"] = np.zeros((4 * npair, 4))
             cg = g.create_group("contact")
             pn = np.asarray(s["pressure"], dtype=float)
             pt = np.asarray(s.get("shear", np.zeros(npair)), dtype=float)
@@ -335,6 +338,12 @@ class TestSlippingAtZeroForce(Tmp):
         rows = [ln for ln in stage_table(path).splitlines() if ln.startswith("| 2 |")]
         self.assertEqual(len(rows), 1)
         self.assertIn("| 0 of 2 |", rows[0])
+        # the panel of the result plot: "2 of 2 pairs closed, 0 slipping" at the unload
+        for inc, want in ((1, "1 slipping"), (2, "0 slipping")):
+            fig = captured(plot_result, path, os.path.join(self.work, "r.png"), inc)
+            titles = [ax.get_title() for ax in fig.axes if "slipping" in ax.get_title()]
+            self.assertEqual(len(titles), 1)
+            self.assertIn("2 of 2 pairs closed, %s" % want, titles[0])
 
 
 class TestCompareHelpers(Tmp):

@@ -29,9 +29,10 @@ Definitions (docs/results-format.md names the datasets; docs/history.md these fi
   and is not "slipping"); its share of the closed area.
 * what changes in a step (h.kind): of the total normal force and the mean u_T of the closed
   pairs, the one whose change relative to its largest magnitude over the run (for u_T: the
-  largest of u_T, closure and approach) is larger and above 1e-6: the normal load (loading / unloading: the sign of the change of lam, else of the
-  force) or the tangential displacement (tangential + / -); when neither changes, the sign of
-  the change of lam (a load change with the pairs open or at zero force), else holding.  The
+  largest of u_T, closure and approach) is larger and above 1e-6: the normal load (loading /
+  unloading: the sign of the change of lam, else of the force) or the tangential displacement
+  (tangential + / -); when neither changes, the sign of the change of lam (a load change with
+  the pairs open or at zero force), else holding.  The
   unloaded origin (zero load, zero displacement) is the state before the first increment.
 
 Reads the results through k2d.results only.

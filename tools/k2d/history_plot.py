@@ -30,8 +30,8 @@ from .history import KIND_STYLE, History, law_curves, unit_labels  # noqa: E402
 from .loops import NSUB, default_loop_pairs, energy_points, normal_path, plot_energy, plot_loops  # noqa: E402
 from .results import Result  # noqa: E402
 
-__all__ = ["STYLE", "DNAME", "KIND_STYLE", "STATE_COLOURS", "plot_approach", "reversal_points", "plot_pairs", "plot_interface",
-           "pair_states", "plot_slip", "plot_history", "stage_table", "residual_after"]
+__all__ = ["STYLE", "DNAME", "KIND_STYLE", "STATE_COLOURS", "plot_approach", "reversal_points", "plot_pairs",
+           "plot_interface", "pair_states", "plot_slip", "plot_history", "stage_table", "residual_after"]
 
 STYLE = {1: "-", -1: "--", 0: ":"}
 DNAME = {1: "loading", -1: "unloading", 0: "holding"}

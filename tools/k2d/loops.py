@@ -266,8 +266,8 @@ def plot_energy(paths, out, labels=None):
     """Energy dissipated per cycle against the slip amplitude and against the force amplitude
     (log-log) from the /cycles groups of one or several result files (e.g. runs of one deck at
     different amplitudes), with the slope 3 against the force amplitude for reference (partial
-    slip at small amplitude, Mindlin & Deresiewicz: energy ~ Q*^3).  Returns (out, skipped: the files without cycles), out
-    None when no file has cycles."""
+    slip at small amplitude, Mindlin & Deresiewicz: energy ~ Q*^3).  Returns (out, skipped: the
+    files without cycles), out None when no file has cycles."""
     pts, skipped = [], []
     for i, p in enumerate(paths):
         e = energy_points(p)
