@@ -34,7 +34,7 @@ import unittest
 
 import numpy as np
 
-from k2d import laws
+from k2d import laws, loops
 from k2d.build import ROOT, find_or_build
 from k2d.compare import CompareError, vary_deck
 from k2d.history import History
@@ -120,6 +120,24 @@ class TestHistory(Work):
             plot_history(h5, increments=[500])
         h1, _ = self.run_deck(SPHERE, "sphere")
         self.assertEqual(plot_history(h1), [])
+
+
+class TestLoops(Work):
+    def test_program_ends_on_the_python_law(self):
+        """The tangential cycle +-0.8 mu p (tests/decks/contact/tangential_cycle.dat, Newton: on
+        the law to round-off): every increment of every pair is drawn along the law by k2d.loops,
+        i.e. its Masing integration reaches the program's force at the increment end within
+        ON_LAW; the stages are named by what changes and the loop plot is written."""
+        h5, _ = self.run_deck(os.path.join(ROOT, "tests", "decks", "contact", "tangential_cycle.dat"), "tcycle")
+        h = History(Result(h5))
+        self.assertEqual([h.stage_name(a, b) for a, b in h.stages()],
+                         ["loading", "tangential loading (+)", "tangential reversal (-)", "tangential reversal (+)"])
+        self.assertGreater(h.npair, 0)
+        for j in range(h.npair):
+            _, _, on = loops.tangential_path(h, j)
+            self.assertTrue(on.all(), "pair %d: increments %s drawn as chords" % (j + 1, np.where(~on)[0] + 1))
+        pngs = plot_history(h5)
+        self.assertIn("tcycle_loops.png", [os.path.basename(p) for p in pngs])
 
 
 class TestVary(Work):

@@ -323,6 +323,30 @@ class TestTangential(Tmp):
         self.assertFalse(any("holding" in t for t in labels), labels)
 
 
+class TestMasing(unittest.TestCase):
+    def test_documented_numbers(self):
+        """docs/contact.md: elastic up to 0.625 mu F_n, the branch of slope kappa k_e, gross slip at
+        mu F_n where |X| = 0.375 mu F_n; from +0.8 mu F_n the reversed branch starts at -0.45 mu F_n
+        (exact binary fractions here, so equalities to 1e-15)."""
+        ke, kappa, lim = 1.0, 0.05, 1.0
+        self.assertEqual(laws.masing_return(0.0, 0.5, ke, kappa, lim, 0.0), (0.5, 0.0, 0))
+        u_08 = 0.625 + 0.175 / kappa                 # F = 0.8 on the virgin branch
+        f, x, st = laws.masing_return(0.0, u_08, ke, kappa, lim, 0.0)
+        self.assertEqual(st, 1)
+        self.assertAlmostEqual(f, 0.8, delta=1e-15)
+        self.assertAlmostEqual(x, 0.175, delta=1e-15)
+        f2, x2, st2 = laws.masing_return(f, -1.25 + 1e-9, ke, kappa, lim, x)     # just inside the band
+        self.assertEqual(st2, 0)
+        self.assertAlmostEqual(f2, -0.45, delta=1e-8)
+        f3, _, st3 = laws.masing_return(f, -1.25 - 1.0, ke, kappa, lim, x)       # 1 beyond: on the reversed branch
+        self.assertEqual(st3, 1)
+        self.assertAlmostEqual(f3, -0.45 - kappa * 1.0, delta=1e-15)
+        f4, x4, st4 = laws.masing_return(0.0, 0.625 + 0.375 / kappa + 1.0, ke, kappa, lim, 0.0)
+        self.assertEqual((f4, x4, st4), (1.0, 0.375, 2))
+        # without the branch: elastic up to mu F_n, then slip
+        self.assertEqual(laws.masing_return(0.0, 2.0, ke, kappa, lim, 0.0, False), (1.0, 0.0, 2))
+
+
 class TestSlippingAtZeroForce(Tmp):
     def test_zero_force_pairs_do_not_slip(self):
         steps = [{"lf": 1.0, "pressure": [1.0, 0.5], "closure": laws.virgin_closure(np.array([1.0, 0.5]), CN, M),
