@@ -98,12 +98,13 @@ def plot_approach(h, out, units):
 
 
 def reversal_points(h, j):
-    """(u_A, p_A) where pair j leaves the virgin curve (loading state followed by an unloaded or
-    open one while the load falls), from the kept increments."""
+    """(u_A, p_A) where pair j leaves the virgin curve (loading state followed by an unloading
+    one, or by an open one while the load falls), from the kept increments.  Under a tangential
+    cycle a pair unloads while the load factor rises too (the couple of the shear)."""
     pts = []
     ns = [h.field(k, "normal_state")[j] for k in range(len(h.steps))]
     for k in range(len(ns) - 1):
-        if ns[k] == 1 and ns[k + 1] != 1 and h.direction[k + 1] < 0:
+        if ns[k] == 1 and (ns[k + 1] == 2 or (ns[k + 1] != 1 and h.direction[k + 1] < 0)):
             pts.append((float(h.field(k, "closure")[j]), float(h.field(k, "pressure")[j])))
     return pts
 
