@@ -73,8 +73,10 @@ def normal_path(h, j, nsub=NSUB):
     p = np.concatenate([[0.0], _series(h, "pressure", j)])
     ns = np.concatenate([[1], _series(h, "normal_state", j)])
     on = np.zeros(len(h.steps), dtype=bool)
-    if not (_rough(law) and _consecutive(h)):
+    if not _rough(law):
         return u, p, on
+    # with increments left out of the file only the virgin curve is certain between two ends on it
+    every = _consecutive(h)
     cn, m, cn2, m2 = (float(v) for v in np.atleast_1d(law["normal_model"])[:4])
     tol = ON_LAW * max(np.max(np.abs(p)), np.finfo(float).tiny)
     xs, ys = [u[0]], [p[0]]
@@ -87,10 +89,19 @@ def normal_path(h, j, nsub=NSUB):
         elif ns[k] == 2 and ns[k - 1] == 1:
             new_rev = (u[k - 1], p[k - 1])
         ok = False
-        if ns[k] > 0 or ns[k - 1] > 0:
+        if not every and not (ns[k] == 1 and ns[k - 1] == 1):
+            new_rev = None
+        elif ns[k] > 0 or ns[k - 1] > 0:
             pend = laws.normal_law_pressure(u[k], cn, m, cn2, m2, new_rev)
             ok = abs(pend - p[k]) <= tol
-        if ok:
+        elif p[k] == 0.0 and p[k - 1] == 0.0:
+            ok = True               # open at both ends: zero pressure is the law
+            new_rev = rev
+        if ok and ns[k] == 0 and ns[k - 1] == 0:
+            s = np.linspace(u[k - 1], u[k], nsub + 1)[1:]
+            xs.extend(s)
+            ys.extend(np.zeros(nsub))
+        elif ok:
             s = np.linspace(u[k - 1], u[k], nsub + 1)[1:]
             xs.extend(s)
             ys.extend(np.atleast_1d(laws.normal_law_pressure(s, cn, m, cn2, m2, new_rev)))
@@ -167,6 +178,8 @@ def tangential_path(h, j, nsub=NSUB, per_increment=False):
                                            np.sign(ft[k]) * max(limit - ry, 0.0))
         else:
             x = 0.0
+            # open or at zero force at both ends: F_T = 0 is the law
+            on[k - 1] = ft[k] == 0.0 and ft[k - 1] == 0.0
         segs.append(seg)
         if on[k - 1]:
             xs.extend(ut[k - 1] + t * (ut[k] - ut[k - 1]))
