@@ -11,10 +11,13 @@ With --vary the deck is run as it is and with the one card changed (LAW on every
 the CONTACT block, or SCHEME for the block), each in its own kontakt2d process.  The report
 goes to DIR/report.md (default results/compare_<deck>_<card>_<value>/ or
 results/compare_<deck a>_<deck b>/) with its figures beside it and the numbers in
-DIR/report.json.  Exit code 2 for a bad request (message names what was expected), 3 when a
-run failed before writing a result file.
+DIR/report.json.  The figures are compared at like states (the same load factors along the same
+load path), or the report says that none exists.  Exit code 2 for a bad request (message names
+what was expected), 3 when a run failed (before writing a result file: no report; after: the
+report names the failed run and compares the last state both runs reached).
 """
 import argparse
+import json
 import os
 import sys
 
@@ -75,6 +78,11 @@ def main(argv=None):
         print("compare.py: error: %s" % e, file=sys.stderr)
         return 3 if "wrote no result file" in str(e) else 2
     print("report: " + md)
+    with open(os.path.join(os.path.dirname(md), "report.json")) as f:
+        bad = json.load(f)["failed"]
+    if bad:
+        print("compare.py: error: the run %s failed (see the report)" % " and the run ".join(bad), file=sys.stderr)
+        return 3
     return 0
 
 

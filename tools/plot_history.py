@@ -1,14 +1,19 @@
 #!/usr/bin/python3
 """History plots of a Kontakt2D result file with contact (k2d.history_plot is the drawing).
 
-    tools/plot_history.py RESULTS.h5 [--pairs 3,7] [--increments 10,40,60]
+    tools/plot_history.py RESULTS.h5 [--pairs 3,7] [--increments 10,40,60] [--loop-pairs 2,5]
                           [--approach-nodes A,B] [--stages] [--stages-file FILE.md]
 
 Writes RESULTS_approach.png (load factor and total normal force against the approach),
 RESULTS_pairs.png (pressure-closure paths of chosen pairs over the law's curves; default the
 most and the least loaded pair), RESULTS_interface.png (pressure and shear along the interface
 at several increments; default: the turning points of the load history, the peak, the last and
-a few between) and RESULTS_slip.png (the slip zone against the load).  A file without contact
+a few between), RESULTS_slip.png (the slip zone against the load), for a history that moves
+the interface tangentially RESULTS_loops.png (shear-slip p_T-u_T paths of chosen pairs, default
+the pairs with the largest range of u_T, and the interface's total tangential force against the
+mean u_T of its closed pairs, drawn along the law), and for a file with periodic histories
+(/cycles) RESULTS_energy.png (energy per cycle against the amplitude, log-log; several runs:
+tools/plot_energy.py).  A file without contact
 pairs or with one increment has no history: the script says so and exits 0.  --stages prints
 the figures at the end of every load stage as a Markdown table, --stages-file writes it.
 """
@@ -39,6 +44,8 @@ def main(argv=None):
     ap.add_argument("results")
     ap.add_argument("--pairs", type=int_list, default=None, help="pair numbers for the pressure-closure plot")
     ap.add_argument("--increments", type=int_list, default=None, help="increments drawn along the interface")
+    ap.add_argument("--loop-pairs", type=int_list, default=None,
+                    help="pair numbers for the shear-slip loops (default: the largest range of u_T)")
     ap.add_argument("--approach-nodes", type=node_pair, default=None,
                     help="node of body A and node of body B between which the approach is measured")
     ap.add_argument("--stages", action="store_true", help="print the figures at the end of every load stage")
@@ -47,7 +54,8 @@ def main(argv=None):
     if not os.path.exists(args.results):
         sys.exit(f"{args.results}: no such result file")
     try:
-        pngs = plot_history(args.results, args.pairs, args.increments, args.approach_nodes)
+        pngs = plot_history(args.results, args.pairs, args.increments, args.approach_nodes,
+                            loop_pairs=args.loop_pairs)
     except ValueError as e:
         sys.exit(str(e))
     if not pngs:

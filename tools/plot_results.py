@@ -8,7 +8,7 @@ The drawing is k2d.plot (reading through k2d.results); this is its command line.
 
 When the file holds contact results (group `contact` in the increment), a
 second panel shows the contact pressure and shear along the contact surface
-(slipping pairs marked), and the mesh panel zooms on a contact zone that is
+(slipping pairs marked: in slip and carrying a normal force), and the mesh panel zooms on a contact zone that is
 small against the model (--zoom none shows the whole model).
 """
 

@@ -19,7 +19,9 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_history_compare.py 
   replacing UPDATE, a deck without CONTACT refused; the varied deck read by the program has
   the law it asks for;
 * tools/compare.py: the numbers of its report (six significant digits) agree with the HDF5
-  files read here to 1e-5 relative; a bad --vary gives exit code 2 and a message.
+  files read here to 1e-5 relative, the mean u_T of the closed pairs among them; a bad --vary
+  gives exit code 2 and a message; a run that failed half way is named, exit code 3, and the
+  runs are compared at the last state both reached; round-off gets no per cent.
 """
 
 import os
@@ -32,7 +34,7 @@ import unittest
 
 import numpy as np
 
-from k2d import laws
+from k2d import laws, loops
 from k2d.build import ROOT, find_or_build
 from k2d.compare import CompareError, vary_deck
 from k2d.history import History
@@ -120,6 +122,63 @@ class TestHistory(Work):
         self.assertEqual(plot_history(h1), [])
 
 
+class TestLoops(Work):
+    def test_program_ends_on_the_python_law(self):
+        """The tangential cycle +-0.8 mu p (tests/decks/contact/tangential_cycle.dat, Newton: on
+        the law to round-off): every increment of every pair is drawn along the law by k2d.loops,
+        i.e. its Masing integration reaches the program's force at the increment end within
+        ON_LAW; the stages are named by what changes and the loop plot is written."""
+        h5, _ = self.run_deck(os.path.join(ROOT, "tests", "decks", "contact", "tangential_cycle.dat"), "tcycle")
+        h = History(Result(h5))
+        self.assertEqual([h.stage_name(a, b) for a, b in h.stages()],
+                         ["loading", "tangential loading (+)", "tangential reversal (-)", "tangential reversal (+)"])
+        self.assertGreater(h.npair, 0)
+        for j in range(h.npair):
+            _, _, on = loops.tangential_path(h, j)
+            self.assertTrue(on.all(), "pair %d: increments %s drawn as chords" % (j + 1, np.where(~on)[0] + 1))
+        pngs = plot_history(h5)
+        self.assertIn("tcycle_loops.png", [os.path.basename(p) for p in pngs])
+
+
+    def test_joint_cycle_loops_and_energy(self):
+        """inputs/joint_cycle.dat: the loop plot is written; every increment of every pair is drawn
+        along the law (normal and tangential).  Where the program writes the periodic histories
+        (/cycles) the energy plot is written too, and the energy of the last cycle equals the
+        areas of the pairs' loops along the law, the integrals of F_T du_T + F_n du_n from the end
+        of its first_increment to the end of its last_increment (docs/results-format.md: the
+        increments at which the cycle starts and ends): two computations of the work of the laws
+        (the program's from its increments, this one by the trapezoidal rule on 24 points per
+        increment of the law's curves; 1 %: the branch kinks inside an increment are cut by at
+        most one chord of 1/24 of the increment; measured 0.3 %).  Without /cycles (a program
+        before them) that part is skipped, said on the output."""
+        h5, _ = self.run_deck(os.path.join(ROOT, "inputs", "joint_cycle.dat"), "joint")
+        pngs = [os.path.basename(p) for p in plot_history(h5)]
+        self.assertIn("joint_loops.png", pngs)
+        h = History(Result(h5))
+        self.assertEqual(h.npair, 9)
+        n = loops.NSUB
+        for j in range(h.npair):
+            self.assertTrue(loops.tangential_path(h, j)[2].all(), j)
+            self.assertTrue(loops.normal_path(h, j)[2].all(), j)
+        cyc = h.result.cycles
+        if not cyc:
+            self.assertNotIn("joint_energy.png", pngs)
+            print("\njoint_cycle: no /cycles in the result file: the energy check is skipped")
+            return
+        self.assertIn("joint_energy.png", pngs)
+        first, last = int(cyc["first_increment"][-1]), int(cyc["last_increment"][-1])
+        a, b = h.index_of(first), h.index_of(last)
+        work = 0.0
+        for j in range(h.npair):
+            ut, pt, _ = loops.tangential_path(h, j)
+            un, pn, _ = loops.normal_path(h, j)
+            sl = slice((a + 1) * n, (b + 1) * n + 1)   # from the end of increment `first` to that of `last`
+            work += h.area[j] * (np.trapz(pt[sl], ut[sl]) + np.trapz(pn[sl], un[sl]))
+        energy = float(np.atleast_2d(cyc["energy"])[-1, 0])
+        self.assertGreater(work, 0.0)
+        self.assertAlmostEqual(energy / work, 1.0, delta=0.01)
+
+
 class TestVary(Work):
     DECK = ("TITLE\nt\nCONTACT\n{first}UNITS     KGF_UM\nLAW       ROUGH\nUPDATE    NEWTON\nSURFACE   A\n"
             "    1    2\n{second}SURFACE   B\n    3    4\nINCREMENTS\n    1       1.0\nEND\n")
@@ -189,7 +248,9 @@ class TestCompare(Work):
             c = res.last.contact_all()
             closed = c["normal_state"] > 0
             self.assertTrue(closed.any())
+            area = res.contact.area[closed]
             want = {
+                "mean tangential displacement u_T of the closed pairs": np.sum(area * c["slip"][closed]) / area.sum(),
                 "peak pressure": np.max(c["pressure"][closed]),
                 "total normal force": np.sum(c["force_normal"]),
                 "total tangential force": np.sum(c["force_tangential"]),
@@ -203,10 +264,49 @@ class TestCompare(Work):
                 got = float(table[key][col])
                 self.assertAlmostEqual(got, float(value), delta=1e-5 * max(abs(float(value)), 1e-300), msg=key)
                 checked += 1
-        self.assertEqual(checked, 14)
+        self.assertEqual(checked, 16)
         for png in ("compare_last.png", "compare_history.png"):
             self.assertIn("(%s)" % png, md)
             self.assertTrue(os.path.exists(os.path.join(out, png)))
+
+    def test_failed_run_like_states_and_round_off(self):
+        """A run that failed half way: named, exit code 3, compared at the last state both runs
+        reached (not its last increment against the other's); tangential forces of round-off size
+        get no per cent.  The runs are result files built here (test_loops.write_result), handed
+        out by a stand-in for the program that copies the file its deck names and exits with the
+        deck's code."""
+        from test_loops import normal_cycle_steps, write_result
+        steps = normal_cycle_steps()
+        for s_, ft in zip(steps, (1e-15, -2e-15, 3e-15, 1e-15, -1e-15, 2e-15, 1e-15)):
+            s_["shear"] = np.array([ft, 0.0])
+        other = [dict(s_, shear=np.array([-8.21e-15, 0.0])) for s_ in steps[:5]]
+        good = write_result(os.path.join(self.work, "good_src.h5"), steps)
+        bad = write_result(os.path.join(self.work, "bad_src.h5"), other, status="failed at increment 6: no convergence")
+        fake = os.path.join(self.work, "fake_kontakt2d")
+        with open(fake, "w") as f:
+            f.write("#!%s\nimport shutil, sys\nsrc, code = open(sys.argv[1]).read().split()\n"
+                    "shutil.copy(src, sys.argv[sys.argv.index('-o') + 1])\nsys.exit(int(code))\n" % sys.executable)
+        os.chmod(fake, 0o755)
+        decks = []
+        for name, src, code in (("full", good, 0), ("cut", bad, 3)):
+            decks.append(os.path.join(self.work, name + ".dat"))
+            with open(decks[-1], "w") as f:
+                f.write("%s %d\n" % (src, code))
+        out = os.path.join(self.work, "cmp_failed")
+        p = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "compare.py"), decks[0], decks[1],
+                            "-o", out, "--exe", fake], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 3, p.stdout + p.stderr)
+        self.assertIn("the run cut failed", p.stderr)
+        with open(os.path.join(out, "report.md")) as f:
+            md = f.read()
+        self.assertIn("**The run cut failed** (exit code 3, status: failed at increment 6", md)
+        self.assertIn("increment 5 of full and 5 of cut (like states: the last state both runs reached)", md)
+        rows = {ln.split("|")[1].strip().split(" [")[0]: [c.strip() for c in ln.split("|")[2:5]]
+                for ln in md.splitlines() if ln.startswith("| ") and ln.count("|") == 5}
+        self.assertEqual(rows["load factor"], ["0.7", "0.7", "equal"])
+        self.assertEqual(rows["peak pressure"][2], "equal")
+        self.assertEqual(rows["total tangential force"][2], "equal to round-off")
+        self.assertIn("mean tangential displacement u_T of the closed pairs", rows)
 
     def test_bad_vary(self):
         p = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "compare.py"), TANGENTIAL,

@@ -14,6 +14,7 @@ lines on it (docs/DEVELOPERS.md, "The Python package tools/k2d").
     paper, study, increment_study, plot   the work of the scripts of the same purpose
     history          the figures of a run's history (approach, load stages, width, slip zone)
     history_plot     the history plots and the stage table (tools/plot_history.py, tools/run.sh)
+    loops            paths along the interface law, shear-slip loops, energy per cycle (tools/plot_energy.py)
     compare          a deck against a varied card, or two decks: runs and report (tools/compare.py)
     adapt, refine    refinement to a requested accuracy; a card deck split uniformly (tools/adapt.py)
 
@@ -24,5 +25,5 @@ the test checkers) or install the package: ``pip install -e tools`` (tools/pypro
 """
 __all__ = ["adapt", "analysis", "batch", "build", "calibration", "calibration_data", "calibration_plots",
            "calibration_replay", "checks", "compare", "deck", "examples", "history", "history_plot",
-           "increment_study", "laws", "paper", "patch", "plot", "published", "refine", "results", "scenes",
+           "increment_study", "laws", "loops", "paper", "patch", "plot", "published", "refine", "results", "scenes",
            "study", "tables", "terminal"]

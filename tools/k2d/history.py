@@ -5,6 +5,9 @@
     h = History(Result("punch.h5"))
     h.lam                     # (nsteps) the scalar load factor (the case whose factor varies most)
     h.direction               # (nsteps) +1 loading, -1 unloading, 0 holding (sign of the change of lam)
+    h.kind                    # (nsteps) what changes in the step: "loading", "unloading" (the normal
+                              # load), "tangential +", "tangential -" (the tangential displacement
+                              # under a held normal load), "holding"
     h.approach                # (nsteps) relative normal displacement of the bodies [length]
     h.figures(k)              # dict of the figures of step k: peak pressure and where, width, area,
                               # total normal and tangential force, slipping pairs, law drift, ...
@@ -21,7 +24,16 @@ Definitions (docs/results-format.md names the datasets; docs/history.md these fi
 * contact width: the extent of the closed pairs along the interface coordinate (the pairs'
   coordinate of largest spread); contact area: the sum of the lumped areas A_j of the closed
   pairs (ring areas in axisymmetry).
-* slip zone: the pairs in slip (tangential state 2); its share of the closed area.
+* slip zone: the pairs in slip (tangential state 2) that carry a normal force (F_n above
+  1e-12 of the largest pair force of the run: a pair at zero force holds nothing tangentially
+  and is not "slipping"); its share of the closed area.
+* what changes in a step (h.kind): of the total normal force and the mean u_T of the closed
+  pairs, the one whose change relative to its largest magnitude over the run (for u_T: the
+  largest of u_T, closure and approach) is larger and above 1e-6: the normal load (loading /
+  unloading: the sign of the change of lam, else of the force) or the tangential displacement
+  (tangential + / -); when neither changes, the sign of the change of lam (a load change with
+  the pairs open or at zero force), else holding.  The
+  unloaded origin (zero load, zero displacement) is the state before the first increment.
 
 Reads the results through k2d.results only.
 """
@@ -29,9 +41,11 @@ import numpy as np
 
 from k2d import laws
 
-__all__ = ["STATE_NAMES", "History", "law_curves", "unit_labels"]
+__all__ = ["STATE_NAMES", "KIND_STYLE", "History", "law_curves", "unit_labels"]
 
 STATE_NAMES = {0: "open", 1: "loading", 2: "unloading"}
+# line style of a step by what changes in it (history plots)
+KIND_STYLE = {"loading": "-", "unloading": "--", "tangential +": "-", "tangential -": "-.", "holding": ":"}
 
 
 class History:
@@ -60,8 +74,12 @@ class History:
         self.normal = n / np.linalg.norm(n)
         self.ntype = int(result.attrs.get("ntype", 1))
         self._fields = [s.contact_all() for s in self.steps]
+        fn_all = np.array([f["force_normal"] for f in self._fields])
+        # a pair "carries" a normal force above round-off of the run's largest pair force
+        self.fn_floor = 1e-12 * max(float(np.max(np.abs(fn_all))) if fn_all.size else 0.0, np.finfo(float).tiny)
         self._far = self._far_points(approach_nodes)
         self.approach = np.array([self._approach(s) for s in self.steps])
+        self.kind = self._kinds()
 
     # ---- the bodies and their far points
     def _bodies(self):
@@ -119,6 +137,64 @@ class History:
         ub = np.mean(u[self._far[1]] @ self.normal)
         return float(ub - ua)
 
+    def _kinds(self):
+        """What changes in every step (see the module's text)."""
+        fn = np.array([0.0] + [float(f["force_normal"].sum()) for f in self._fields])
+        ut = np.array([0.0] + [self.mean_slip(k) for k in range(len(self.steps))])
+        fn_max = max(np.max(np.abs(fn)), np.finfo(float).tiny)
+        # u_T is measured against the run's displacements at the interface (the largest of u_T,
+        # the closures and the approach): in a purely normal history u_T is round-off
+        closure = max(float(np.max(np.abs(f["closure"]))) if f["closure"].size else 0.0 for f in self._fields)
+        ut_max = max(np.max(np.abs(ut)), closure, float(np.max(np.abs(self.approach))))
+        ut_max = ut_max if ut_max > 0 else np.inf
+        out = []
+        for k in range(len(self.steps)):
+            rel_n, rel_t = abs(fn[k + 1] - fn[k]) / fn_max, abs(ut[k + 1] - ut[k]) / ut_max
+            if rel_n > 1e-6 and rel_n >= rel_t:
+                d = self.direction[k] or (1 if fn[k + 1] > fn[k] else -1)
+                out.append("loading" if d > 0 else "unloading")
+            elif rel_t > 1e-6:
+                out.append("tangential +" if ut[k + 1] > ut[k] else "tangential -")
+            elif self.direction[k]:
+                # the load changes but not the interface's forces (pairs open at zero force)
+                out.append("loading" if self.direction[k] > 0 else "unloading")
+            else:
+                out.append("holding")
+        return np.array(out, dtype=object)
+
+    def carrying(self, k):
+        """The closed pairs of step index k that carry a normal force above round-off."""
+        f = self._fields[k]
+        return (f["normal_state"] > 0) & (f["force_normal"] > self.fn_floor)
+
+    def mean_slip(self, k, iface=None):
+        """The area-weighted mean tangential displacement u_T of the closed pairs of step index k
+        (of interface `iface`, 1-based, or of all), 0 when none is closed."""
+        f = self._fields[k]
+        sel = f["normal_state"] > 0
+        if iface is not None:
+            sel &= self.result.contact.interface == iface
+        a = self.area[sel]
+        return float(np.sum(a * f["slip"][sel]) / a.sum()) if a.sum() > 0 else 0.0
+
+    def tangential_totals(self, iface=1):
+        """(sum F_T, mean u_T) of interface `iface` (1-based) over the kept steps, the unloaded
+        origin first (zeros): the program's attributes tangential_force_total and slip_mean where
+        the file has them, else computed here from force_tangential, slip, area and normal_state
+        (the same definitions).  Returns (force, slip, "file" or "computed")."""
+        force, slip, src = [0.0], [0.0], "file"
+        sel = self.result.contact.interface == iface
+        for k, s in enumerate(self.steps):
+            a = s.contact_attrs
+            if "tangential_force_total" in a and "slip_mean" in a and len(a["slip_mean"]) >= iface:
+                force.append(float(a["tangential_force_total"][iface - 1]))
+                slip.append(float(a["slip_mean"][iface - 1]))
+            else:
+                src = "computed"
+                force.append(float(self._fields[k]["force_tangential"][sel].sum()))
+                slip.append(self.mean_slip(k, iface))
+        return np.array(force), np.array(slip), src
+
     # ---- per-step figures
     def field(self, k, name):
         """A contact quantity of step index k (0-based over the kept steps)."""
@@ -129,7 +205,7 @@ class History:
         f = self._fields[k]
         p = f["pressure"]
         closed = f["normal_state"] > 0
-        slip = closed & (f["tangential_state"] == 2)
+        slip = self.carrying(k) & (f["tangential_state"] == 2)
         j = int(np.argmax(np.where(closed, p, -np.inf))) if closed.any() else -1
         cc = self.coord[closed]
         area_closed = float(self.area[closed].sum())
@@ -138,6 +214,10 @@ class History:
             "step": self.steps[k].number,
             "load_factor": float(self.lam[k]),
             "direction": int(self.direction[k]),
+            "kind": str(self.kind[k]),
+            "mean_slip": self.mean_slip(k),
+            "max_slip": float(f["slip"][np.argmax(np.abs(f["slip"]))]) if f["slip"].size else 0.0,
+            "max_irreversible": float(np.max(np.abs(f["slip_irreversible"]))) if "slip_irreversible" in f else 0.0,
             "peak_pressure": float(p[j]) if j >= 0 else 0.0,
             "peak_at": tuple(self.position[j]) if j >= 0 else (np.nan, np.nan),
             "closed": int(closed.sum()),
@@ -155,23 +235,35 @@ class History:
         }
 
     def stages(self):
-        """(first, last) step indices of the monotone stages: a new stage starts where the
-        load factor turns (loading to unloading or back; holding joins the stage before)."""
-        out, start, cur = [], 0, self.direction[0] or 1
-        for k in range(1, len(self.steps)):
-            d = self.direction[k]
-            if d != 0 and d != cur:
+        """(first, last) step indices of the monotone stages: a new stage starts where what
+        changes turns (normal loading to unloading or back, the tangential displacement
+        reversed, normal to tangential; holding joins the stage before)."""
+        out, start, cur = [], 0, None
+        for k in range(len(self.steps)):
+            d = self.kind[k]
+            if d == "holding":
+                continue
+            if cur is not None and d != cur:
                 out.append((start, k - 1))
-                start, cur = k, d
+                start = k
+            cur = d
         out.append((start, len(self.steps) - 1))
         return out
 
     def stage_name(self, first, last):
-        d = self.direction[first:last + 1]
-        d = d[d != 0]
-        if d.size == 0:
+        """loading, unloading (the normal load), tangential loading (the first tangential stage
+        from rest), tangential reversal (a tangential stage after one of the other sign), or
+        holding (nothing changes)."""
+        d = [v for v in self.kind[first:last + 1] if v != "holding"]
+        if not d:
             return "holding"
-        return "loading" if d[0] > 0 else "unloading"
+        if not d[0].startswith("tangential"):
+            return d[0]
+        before = [v for v in self.kind[:first] if v.startswith("tangential")]
+        sign = d[0][-1]
+        if before and before[-1] != d[0]:
+            return "tangential reversal (%s)" % sign
+        return "tangential loading (%s)" % sign
 
     # ---- choices for the plots
     def default_pairs(self):

@@ -26,11 +26,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from . import laws  # noqa: E402
-from .history import History, law_curves, unit_labels  # noqa: E402
+from .history import KIND_STYLE, History, law_curves, unit_labels  # noqa: E402
+from .loops import NSUB, default_loop_pairs, energy_points, normal_path, plot_energy, plot_loops  # noqa: E402
 from .results import Result  # noqa: E402
 
-__all__ = ["STYLE", "DNAME", "STATE_COLOURS", "plot_approach", "reversal_points", "plot_pairs", "plot_interface",
-           "pair_states", "plot_slip", "plot_history", "stage_table", "residual_after"]
+__all__ = ["STYLE", "DNAME", "KIND_STYLE", "STATE_COLOURS", "plot_approach", "reversal_points", "plot_pairs",
+           "plot_interface", "pair_states", "plot_slip", "plot_history", "stage_table", "residual_after"]
 
 STYLE = {1: "-", -1: "--", 0: ":"}
 DNAME = {1: "loading", -1: "unloading", 0: "holding"}
@@ -48,16 +49,31 @@ def _coord_name(h):
     return ax
 
 
-def _direction_segments(ax, x, y, direction, colour, label):
-    """Draw y(x) with the line style of each step's direction (solid loading, dashed unloading)."""
+def _direction_segments(ax, x, y, kind, colour, label, origin=None, law=None):
+    """Draw y(x) step by step with the line style of what changes in each step (KIND_STYLE:
+    solid loading, dashed unloading, dash-dot tangential -, dotted holding), from the point
+    `origin` (the unloaded state) when given.  law: (xs, ys, on) of k2d.loops, the path drawn
+    along the law with NSUB points per increment where on[k] (else the chord)."""
     shown = set()
+    if origin is not None:
+        x = np.concatenate([[origin[0]], x])
+        y = np.concatenate([[origin[1]], y])
+    else:
+        kind = kind[1:]
+    pos = 0
     for k in range(1, len(x)):
-        d = int(direction[k])
+        d = str(kind[k - 1])
         lab = None
         if d not in shown:
-            lab = "%s (%s)" % (label, DNAME[d]) if label else DNAME[d]
+            lab = "%s (%s)" % (label, d) if label else d
             shown.add(d)
-        ax.plot(x[k - 1:k + 1], y[k - 1:k + 1], STYLE[d], color=colour, label=lab)
+        if law is not None:
+            n = NSUB if law[2][k - 1] else 1
+            xs, ys = law[0][pos:pos + n + 1], law[1][pos:pos + n + 1]
+            pos += n
+        else:
+            xs, ys = x[k - 1:k + 1], y[k - 1:k + 1]
+        ax.plot(xs, ys, KIND_STYLE[d], color=colour, label=lab)
     ax.plot(x, y, "o", ms=3, color=colour)
 
 
@@ -65,9 +81,10 @@ def plot_approach(h, out, units):
     fig, axes = plt.subplots(1, 2, figsize=(12, 5))
     f = [h.figures(k) for k in range(len(h.steps))]
     fn = np.array([v["normal_force"] for v in f])
-    _direction_segments(axes[0], h.approach, h.lam, h.direction, "C0", "")
+    # from the unloaded origin: zero load, zero approach, zero force
+    _direction_segments(axes[0], h.approach, h.lam, h.kind, "C0", "", origin=(0.0, 0.0))
     axes[0].set_ylabel(_lam_label(h))
-    _direction_segments(axes[1], h.approach, fn, h.direction, "C2", "")
+    _direction_segments(axes[1], h.approach, fn, h.kind, "C2", "", origin=(0.0, 0.0))
     axes[1].set_ylabel("total normal contact force sum F_n [%s]" % units["force"])
     for ax in axes:
         ax.set_xlabel("approach of the bodies [%s]" % units["length"])
@@ -81,12 +98,13 @@ def plot_approach(h, out, units):
 
 
 def reversal_points(h, j):
-    """(u_A, p_A) where pair j leaves the virgin curve (loading state followed by an unloaded or
-    open one while the load falls), from the kept increments."""
+    """(u_A, p_A) where pair j leaves the virgin curve (loading state followed by an unloading
+    one, or by an open one while the load falls), from the kept increments.  Under a tangential
+    cycle a pair unloads while the load factor rises too (the couple of the shear)."""
     pts = []
     ns = [h.field(k, "normal_state")[j] for k in range(len(h.steps))]
     for k in range(len(ns) - 1):
-        if ns[k] == 1 and ns[k + 1] != 1 and h.direction[k + 1] < 0:
+        if ns[k] == 1 and (ns[k + 1] == 2 or (ns[k + 1] != 1 and h.direction[k + 1] < 0)):
             pts.append((float(h.field(k, "closure")[j]), float(h.field(k, "pressure")[j])))
     return pts
 
@@ -97,6 +115,7 @@ def plot_pairs(h, pairs, out, units):
     ifaces = h.result.contact.interfaces
     iface_of = h.result.contact.interface
     for ax, j in zip(axes[0], pairs):
+        path = normal_path(h, j)
         u = np.array([h.field(k, "closure")[j] for k in range(len(h.steps))])
         p = np.array([h.field(k, "pressure")[j] for k in range(len(h.steps))])
         law = ifaces[int(iface_of[j]) - 1] if len(ifaces) else {}
@@ -105,17 +124,20 @@ def plot_pairs(h, pairs, out, units):
             for i, (lab, cu, cp) in enumerate(law_curves(law, reversal_points(h, j), pmax)):
                 ax.plot(cu, cp, color="0.6" if i == 0 else "0.4", lw=1.0 if i == 0 else 0.8,
                         ls="-" if i == 0 else "-.", label=lab if i < 2 else None, zorder=1)
-        _direction_segments(ax, u, p, h.direction, "C3", "pair path")
+        _direction_segments(ax, u, p, h.kind, "C3", "pair path", origin=(path[0][0], path[1][0]), law=path)
+        if not path[2].all():
+            ax.text(0.02, 0.95, "%d of %d increments drawn as chords (ends off the law or law unknown)"
+                    % ((~path[2]).sum(), len(path[2])), transform=ax.transAxes, fontsize=7)
         ax.set_xlabel("closure u_n [%s]" % units["length"])
         ax.set_ylabel("pressure p_n [%s]" % units["stress"])
         x, y = h.position[j]
         ax.set_title("pair %d at (%.4g, %.4g)" % (j + 1, x, y), fontsize=9)
-        ax.set_xlim(left=min(0.0, u.min()))
+        ax.set_xlim(left=min(0.0, u.min(), path[0][0]))
         ax.set_ylim(bottom=0.0)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle("%s\npressure-closure path of the pairs over the interface law" % h.result.attrs.get("title", ""),
-                 fontsize=9)
+    fig.suptitle("%s\npressure-closure path of the pairs over the interface law, from the unloaded origin"
+                 % h.result.attrs.get("title", ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     plt.close(fig)
@@ -128,10 +150,10 @@ def plot_interface(h, incs, out, units):
     cmap = plt.get_cmap("viridis")
     for i, k in enumerate(incs):
         colour = cmap(i / max(len(incs) - 1, 1))
-        d = int(h.direction[k])
-        lab = "incr. %d, %s %.4g (%s)" % (h.steps[k].number, "lambda", h.lam[k], DNAME[d])
+        d = str(h.kind[k])
+        lab = "incr. %d, %s %.4g (%s)" % (h.steps[k].number, "lambda", h.lam[k], d)
         for ax, name in zip(axes, ("pressure", "shear")):
-            ax.plot(xc, h.field(k, name)[order], STYLE[d], marker="o", ms=2.5, color=colour, label=lab)
+            ax.plot(xc, h.field(k, name)[order], KIND_STYLE[d], marker="o", ms=2.5, color=colour, label=lab)
     cn = _coord_name(h)
     axes[0].set_ylabel("normal pressure p_n [%s]" % units["stress"])
     axes[1].set_ylabel("shear stress p_T [%s]" % units["stress"])
@@ -140,7 +162,8 @@ def plot_interface(h, incs, out, units):
         ax.axhline(0.0, color="0.7", lw=0.8)
         ax.grid(True, alpha=0.3)
     axes[0].legend(fontsize=7)
-    fig.suptitle("%s\ncontact stresses along the interface: loading solid, unloading dashed, holding dotted"
+    fig.suptitle("%s\ncontact stresses along the interface: loading solid, unloading dashed, tangential - "
+                 "dash-dot, holding dotted"
                  % h.result.attrs.get("title", ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
@@ -148,10 +171,12 @@ def plot_interface(h, incs, out, units):
 
 
 def pair_states(h, k):
-    """State name of every pair in step index k: open, stick, hardening branch, slip."""
+    """State name of every pair in step index k: open, stick, hardening branch, slip (a closed
+    pair at zero normal force, which holds nothing tangentially, is shown as stick, not slip)."""
     ns = h.field(k, "normal_state")
     ts = h.field(k, "tangential_state")
-    names = np.where(ns == 0, "open", np.where(ts == 2, "slip", np.where(ts == 1, "hardening branch", "stick")))
+    slip = (ts == 2) & h.carrying(k)
+    names = np.where(ns == 0, "open", np.where(slip, "slip", np.where(ts == 1, "hardening branch", "stick")))
     return names
 
 
@@ -181,7 +206,7 @@ def plot_slip(h, out, units):
     f = [h.figures(k) for k in range(len(h.steps))]
     share = np.array([v["slip_share"] for v in f])
     nslip = np.array([v["slipping"] for v in f])
-    _direction_segments(axes[1], h.lam, share, h.direction, "C3", "")
+    _direction_segments(axes[1], h.lam, share, h.kind, "C3", "", origin=(0.0, 0.0))
     axes[1].set_xlabel(_lam_label(h))
     axes[1].set_ylabel("slipping share of the closed contact area")
     axes[1].set_ylim(-0.02, 1.02)
@@ -198,7 +223,7 @@ def plot_slip(h, out, units):
     plt.close(fig)
 
 
-def plot_history(path, pairs=None, increments=None, approach_nodes=None, prefix=None):
+def plot_history(path, pairs=None, increments=None, approach_nodes=None, prefix=None, loop_pairs=None):
     """Write the history plots of the result file `path`; returns the PNG paths ([] when the file
     has no contact pairs or fewer than two increments).  pairs: pair numbers (1-based);
     increments: increment numbers for the interface plot; approach_nodes: (node of A, node of B)
@@ -228,6 +253,21 @@ def plot_history(path, pairs=None, increments=None, approach_nodes=None, prefix=
     out.append(base + "_interface.png")
     plot_slip(h, base + "_slip.png", units)
     out.append(base + "_slip.png")
+    # the shear-slip loops where the pairs move tangentially
+    if loop_pairs:
+        for j in loop_pairs:
+            if not 1 <= j <= h.npair:
+                raise ValueError("%s: no pair %d (pairs 1..%d)" % (path, j, h.npair))
+        lidx = [j - 1 for j in loop_pairs]
+    else:
+        lidx = default_loop_pairs(h)
+    if lidx and any(k.startswith("tangential") for k in h.kind):
+        plot_loops(h, lidx, base + "_loops.png", units)
+        out.append(base + "_loops.png")
+    # the energy per cycle against the amplitude, where the program found cycles (/cycles)
+    if energy_points(path) is not None:
+        plot_energy([path], base + "_energy.png")
+        out.append(base + "_energy.png")
     return out
 
 

@@ -10,7 +10,9 @@ The same functions as the program's `src/contact/contact_laws.f90`, elementwise 
   (c_n2 replaced by u_A / p_A^m2: `unloading_constant`);
 * the admissible reversal pressures: with m2 > m both u_res >= 0 and unloading at least as stiff
   as loading at A hold up to p* = min[(c_n/c_n2)^(1/(m2-m)), (c_n m/(c_n2 m2))^(1/(m2-m))];
-* the tangential law's elastic stiffness k_T = p^S / R, R = 2 c_n m (1 + nu) by default (eq. 2.8);
+* the tangential law's elastic stiffness k_T = p^S / R, R = 2 c_n m (1 + nu) by default (eq. 2.8),
+  and its integration over an increment at a fixed normal force (Masing's rule, linear kinematic
+  hardening: `masing_return`, the program's `bilinear_return`, docs/contact.md);
 * the units (docs/contact.md "Units"): constants given in um and kgf/cm2 (UNITS KGF_UM) or um and
   N/mm2 (N_UM) become model constants (mm, N/mm2) as c_model = 1e-3 c f^e, f = 1/0.0980665
   kgf/cm2 per N/mm2 for KGF_UM (1 for N_UM), e the constant's pressure exponent (m for c_n, m2 for
@@ -23,7 +25,7 @@ import numpy as np
 __all__ = ["KGF_CM2", "KGF_PER_NMM2", "UNITS", "length_scale", "pressure_scale", "model_constant",
            "virgin_closure", "virgin_pressure", "virgin_tangent", "admissible_reversals", "reversal_limit",
            "unloading_constant", "residual_closure", "unloading_closure", "unloading_pressure",
-           "unloading_tangent", "r_literature", "tangential_stiffness"]
+           "unloading_tangent", "r_literature", "tangential_stiffness", "masing_return", "normal_law_pressure"]
 
 KGF_CM2 = 0.0980665                 # N/mm2 per kgf/cm2 (SPEC §1)
 KGF_PER_NMM2 = 1.0 / KGF_CM2        # kgf/cm2 per N/mm2, the program's KGF_PER_NMM2
@@ -146,3 +148,35 @@ def r_literature(cn, m, nu):
 def tangential_stiffness(p, s, r):
     """The elastic tangential stiffness per unit area k_T = p^S / R (eq. 2.7)."""
     return _out(np.maximum(p, 0.0) ** s / r)
+
+
+def masing_return(f0, du, ke, kappa, limit, x0, hardening=True):
+    """The tangential force after the displacement increment du from the force f0 with the back
+    force x0 (Masing's rule, docs/contact.md "The tangential law after a reversal"; the program's
+    `bilinear_return` in contact_laws.f90): elastic band |F - X| <= r_y = 0.625 limit (limit =
+    mu F_n; r_y = limit without the hardening branch), slope ke inside it, kappa ke at its edge
+    (the band dragged along), gross slip at |F| = limit.  Returns (force, back force, state:
+    0 stick, 1 hardening branch, 2 slip)."""
+    ry = 0.625 * limit if hardening else limit
+    xcap = max(limit - ry, 0.0)
+    x = min(max(x0, -xcap), xcap)
+    trial = f0 + ke * du
+    if abs(trial - x) <= ry:
+        return trial, x, 0
+    s = 1.0 if trial - x >= 0.0 else -1.0
+    if hardening:
+        f = x + s * ry + kappa * (trial - x - s * ry)
+        if abs(f) <= limit:
+            return f, f - s * ry, 1
+    return s * limit, s * xcap, 2
+
+
+def normal_law_pressure(u, cn, m, cn2, m2, reversal=None):
+    """The normal law's pressure at closure u: the virgin curve, or with a reversal point
+    A = (u_A, p_A) the unloading branch through A up to u_A (zero below u_res) and the virgin
+    curve beyond it (reloading retraces the branch up to A, then follows the virgin curve)."""
+    u = np.asarray(u, dtype=float)
+    if reversal is None:
+        return virgin_pressure(u, cn, m)
+    ua, pa = reversal
+    return _out(np.where(u <= ua, unloading_pressure(u, ua, pa, cn2, m2), virgin_pressure(u, cn, m)))

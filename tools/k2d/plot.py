@@ -171,7 +171,10 @@ def plot_result(path, output=None, increment=0, component="mises", scale=None, z
         xc = xc[order]
         pn, pt = contact["pressure"][order], contact["shear"][order]
         closed = contact["normal_state"][order] > 0
-        slip = closed & (contact["tangential_state"][order] == 2)
+        # slipping: in slip and carrying a normal force (a pair at zero force holds nothing
+        # tangentially; 1e-12 of the increment's largest pair force is round-off)
+        fn = contact["force_normal"][order]
+        slip = closed & (contact["tangential_state"][order] == 2) & (fn > 1e-12 * max(fn.max(), 0.0))
         branch = closed & (contact["tangential_state"][order] == 1)
         ax2.plot(xc, pn, "o-", ms=3, color="C0", label="normal pressure p_n")
         ax2.plot(xc, pt, "s-", ms=3, color="C1", label="shear stress p_T")

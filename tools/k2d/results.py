@@ -17,9 +17,11 @@ names: scripts and tests read results through this module.
         s.error_indicator, s.estimated_error   # (nelem) per element, and the model's: fractions
         s.contact_zone                # {"zone_width": (niface), "zone_pairs": (niface)} or {}
         s.contact("pressure")        # (npair); closure, slip, normal_state, ...
+        s.contact_attrs              # attributes of the increment's contact group (per interface)
     r.step(12)                       # the group of increment 12 (KeyError if not kept)
     r.last                           # the last kept increment
     r.history("law_drift")           # an increment attribute over r.steps (NaN where absent)
+    r.cycles                         # the group /cycles as a dict of arrays ({} when absent)
     dataset("x.h5", "/mesh/cells_quad4")   # one dataset by its path (the XDMF sidecar names them)
     first_nonfinite("x.h5")          # the first dataset or attribute with a NaN or an infinity (None: none)
     audit("x.h5")                    # status, increments_completed, (group, readable, converged): a run cut short
@@ -145,6 +147,17 @@ class Step:
             g = f["increments"][self.name]
             return list(g["contact"].keys()) if "contact" in g else []
 
+    @property
+    def contact_attrs(self):
+        """The attributes of the increment's contact group (one entry per interface: zone_width,
+        zone_pairs, and where the program writes them dissipated_energy, dissipated_increment,
+        tangential_force_total, slip_mean) as 1-D arrays; {} without a contact group."""
+        with h5py.File(self._result.path, "r") as f:
+            g = f["increments"][self.name]
+            if "contact" not in g:
+                return {}
+            return {k: np.atleast_1d(v) for k, v in g["contact"].attrs.items()}
+
     def contact_all(self):
         """Every contact dataset of the increment, as a dict."""
         with h5py.File(self._result.path, "r") as f:
@@ -195,6 +208,18 @@ class Result:
         """An increment attribute over the kept increments (NaN where absent)."""
         return np.array([float(np.atleast_1d(s.attrs[attr])[0]) if attr in s.attrs else np.nan
                          for s in self.steps])
+
+    @property
+    def cycles(self):
+        """The periodic histories (group /cycles: first_increment, last_increment (ncycle) and
+        (ncycle, ninterface) energy, force_amplitude, slip_amplitude, secant_stiffness,
+        loss_factor, damping_ratio) as a dict of arrays; {} when the file has none (a file
+        written before the program wrote them, or a history without cycles)."""
+        with h5py.File(self.path, "r") as f:
+            if "cycles" not in f:
+                return {}
+            g = f["cycles"]
+            return {k: g[k][()] for k in g.keys() if isinstance(g[k], h5py.Dataset)}
 
     def load_factors(self):
         """(nsteps, ncase) load factors of the kept increments."""
