@@ -36,7 +36,7 @@ module incremental
    use strings, only: itoa, rtoa, strip_extension, basename
    use model, only: model_t, NTYPE_AXISYMMETRIC, complete_model, model_complete
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, STEP_CONVERGED, &
-                      STEP_UNSETTLED
+                      STEP_UNSETTLED, cycle_table_t
    use equation_numbering, only: numbering_report_t, number_equations, write_numbering_report
    use solver_factory, only: create_solver, plan_run
    use contact_system, only: contact_equations
@@ -53,8 +53,9 @@ module incremental
    use contact_start, only: init_contact_states, start_pressure
    use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular, attempt_increment
    use contact_fields, only: build_contact_fields, pair_spacing
+   use contact_energy, only: energy_t, energy_init, energy_begin, energy_commit, energy_fields, energy_cycles
    use results_hdf5, only: results_file_t
-   use run_summary, only: list_run_summary
+   use run_summary, only: list_run_summary, list_dissipation
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
                       list_progress, list_completed, list_failed, list_doubts, close_listing, list_reversals
    implicit none
@@ -84,6 +85,8 @@ module incremental
       logical :: reported = .false.              !! a failure was already printed
       integer :: warnings = 0                    !! warnings printed about the method (sliding)
       type(run_doubts_t) :: doubts               !! doubtful steps: the run ends doubtful (exit code 4)
+      type(energy_t) :: energy                   !! energy dissipated by the contact laws (contact_energy)
+      type(cycle_table_t) :: cycles              !! the load cycles found in the history, at the end of the run
    end type run_result_t
 
    !> Where a run reports: the result file, the listing, the terminal.
@@ -229,6 +232,7 @@ contains
       call zero_fields(m, res%body_fields_t)
       call res%trim_history()
       call init_contact_states(m, res%contact)
+      call energy_init(m%contact, res%contact, m%lambda(:, 0), res%energy)
       ! the cap on solutions per increment: CONTACT REPEATS, or 30 for the rough
       ! springs and 100 when the augmented Lagrangian of an ideal interface has
       ! to converge too
@@ -386,6 +390,7 @@ contains
             carry = att%carry
             ve_old = res%contact%s%ve
             pa_old = res%contact%s%pa
+            if (an%has_contact) call energy_begin(res%contact, res%energy)
             if (an%has_contact) call commit_increment(m%contact, res%contact)
             res%disp = res%disp + att%du
             srec = step_record_t(step=nstep, deck_increment=inc, fraction=frac, cuts=cuts, &
@@ -395,6 +400,7 @@ contains
                                  penetration=res%contact%violation, augmentations=res%contact%augmentations, &
                                  status=merge(STEP_CONVERGED, STEP_UNSETTLED, att%converged), contact=an%has_contact, &
                                  ideal=res%contact%has_ideal, last=last, written=written, full=full)
+            if (an%has_contact) call energy_commit(m%contact, res%contact, nstep, srec%lambda, res%energy)
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
             if (an%has_contact) call tangential_drift(m%contact, res%contact, an%tlaw, srec%drift_t, srec%drift_t_pair)
             if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
@@ -485,6 +491,7 @@ contains
       call note_doubts(res%doubts, srec, stderr)
       call res%append_history(srec)
       if (an%has_contact) call build_contact_fields(m%contact, res%contact, res%fields)
+      if (an%has_contact) call energy_fields(m%contact, res%contact, res%energy, res%fields)
       if (srec%full .and. status%ok()) call estimate_error(m, res%body_fields_t, res%fields, status)
 
       if (srec%written) call out%rf%write_increment(srec, res%body_fields_t, status, res%fields)
@@ -510,6 +517,7 @@ contains
       integer :: done, every
       logical :: ran                            !! every increment done (what fails now, fails after them)
       ran = status%ok() .and. .not. out%set_up_failed
+      if (.not. out%set_up_failed) call energy_cycles(res%energy, res%cycles)
       done = merge(-1, res%completed, out%set_up_failed)
       every = merge(1, m%results_every, out%set_up_failed)
       ! the listing's closing lines and summary; the listing is then closed and
@@ -522,8 +530,10 @@ contains
          end if
          if (.not. out%set_up_failed) call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, &
                                             res%drift, res%contact%s%ua, res%contact%s%pa, .true., out%lu, .true., out%t0, out%rate)
+         if (.not. out%set_up_failed) call list_dissipation(m, res%fields, res%cycles, .true., out%lu, .true.)
          call close_listing(out%lu, out%lis_path, status)
       end if
+      if (status%ok() .and. res%cycles%ncycle > 0) call out%rf%write_cycles(res%cycles, status)
       if (status%ok() .and. res%doubts%steps > 0) then
          ! completed, but not to be trusted without a look: exit code 4
          doubts = doubt_summary(res%doubts, res%completed)
@@ -547,6 +557,7 @@ contains
       if (.not. out%set_up_failed) call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, &
                                                          res%contact%s%ua, res%contact%s%pa, .false., out%lu, &
                                                          out%quiet, out%t0, out%rate)
+      if (.not. out%set_up_failed) call list_dissipation(m, res%fields, res%cycles, .false., out%lu, out%quiet)
       call out%rf%close(status)
    end subroutine close_outputs
 end module incremental

@@ -353,6 +353,13 @@ contains
       end do
       write (u, '(a,es14.6,a,es14.6)') '   sum of normal forces:', sum(cf%force_normal), '   of tangential forces:', &
          sum(cf%force_tangential)
+      ! the energy dissipated by the contact laws (module contact_energy), per interface
+      if (allocated(cf%dissipated_energy)) then
+         do j = 1, size(cf%dissipated_energy)
+            write (u, '(a,i0,a,es14.6,a,es14.6)') '   energy dissipated, interface ', j, ': cumulative', &
+               cf%dissipated_energy(j), '   in this increment', cf%dissipated_increment(j)
+         end do
+      end if
    end subroutine list_contact
 
    !> Column titles of the terminal's progress lines.

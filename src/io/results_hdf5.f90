@@ -69,7 +69,7 @@ module results_hdf5
    use errors, only: status_t, STAT_IO, skip_exit_handlers
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
-   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t
+   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, cycle_table_t
    use run_plan, only: solver_name, choice_name, system_name, ordering_name, scheme_name, CHOICE_AUTOMATIC
    use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, law_name, &
                             matching_name, rigid_shape_name, MAX_PAIR_NODES
@@ -108,6 +108,7 @@ module results_hdf5
       procedure :: close => results_close
       procedure :: is_open => results_is_open
       procedure :: increments_completed => results_increments_completed
+      procedure :: write_cycles => results_write_cycles
    end type results_file_t
 
    logical, save :: library_open = .false.
@@ -554,6 +555,38 @@ contains
       n = this%ncompleted
    end function results_increments_completed
 
+   !> /cycles: the load cycles of a periodic history (records' cycle_table_t; shapes as seen
+   !! from C/Python): first_increment, last_increment (ncycle) and energy, force_amplitude,
+   !! slip_amplitude, secant_stiffness, loss_factor, damping_ratio (ncycle, ninterface).
+   !! Written once, at the end of the run.
+   subroutine results_write_cycles(this, tab, status)
+      class(results_file_t), intent(inout) :: this
+      type(cycle_table_t), intent(in) :: tab
+      type(status_t), intent(inout) :: status
+      integer(hid_t) :: gid
+      integer :: err, e
+      if (.not. this%opened .or. tab%ncycle <= 0) return
+      err = 0
+      call h5gcreate_f(this%fid, 'cycles', gid, e)
+      if (e < 0) then
+         call status%set(STAT_IO, 'HDF5: cannot create group /cycles in '//this%path)
+         return
+      end if
+      call write_int1(gid, 'first_increment', tab%first, err)
+      call write_int1(gid, 'last_increment', tab%last, err)
+      call write_real2(gid, 'energy', tab%energy, err)
+      call write_real2(gid, 'force_amplitude', tab%force_amplitude, err)
+      call write_real2(gid, 'slip_amplitude', tab%slip_amplitude, err)
+      call write_real2(gid, 'secant_stiffness', tab%secant_stiffness, err)
+      call write_real2(gid, 'loss_factor', tab%loss_factor, err)
+      call write_real2(gid, 'damping_ratio', tab%damping_ratio, err)
+      call h5gclose_f(gid, e)
+      call keep(e, err)
+      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, e)
+      call keep(e, err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write /cycles in '//this%path)
+   end subroutine results_write_cycles
+
    !> Root attributes of the run: its plan (the solver, who chose it and
    !! why, the contact system, the order of the equations, the contact
    !! scheme), the bounds of the automatic increments (with the increments'
@@ -713,6 +746,16 @@ contains
          call write_real1(cid, 'resolution', cf%resolution, err)
          call attr_real1(cid, 'zone_width', cf%zone_width, err)
          call attr_int1(cid, 'zone_pairs', cf%zone_pairs, err)
+      end if
+      if (allocated(cf%dissipation_tangential)) then
+         ! the energy dissipated by the contact laws (module contact_energy): per pair, and per
+         ! interface as attributes
+         call write_real1(cid, 'dissipation_tangential', cf%dissipation_tangential, err)
+         call write_real1(cid, 'dissipation_normal', cf%dissipation_normal, err)
+         call attr_real1(cid, 'dissipated_energy', cf%dissipated_energy, err)
+         call attr_real1(cid, 'dissipated_increment', cf%dissipated_increment, err)
+         call attr_real1(cid, 'tangential_force_total', cf%tangential_force_total, err)
+         call attr_real1(cid, 'slip_mean', cf%slip_mean, err)
       end if
       call h5gclose_f(cid, e)
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the contact results')

@@ -44,6 +44,7 @@ module run_summary
    implicit none
    private
    public :: run_summary_t, summarise_run, write_run_summary, list_run_summary, load_stages
+   public :: list_dissipation, write_dissipation
 
    !> A pair with a reversal point counts as unloaded when its pressure has
    !! left p_A by more than this fraction of it (or it is open): 100 times the
@@ -456,4 +457,58 @@ contains
          line = trim(line)//', largest pressure jump between neighbouring pairs '//trim(b)//' % of the peak'
       end do
    end function error_estimate_line
+
+   !> The energy dissipated by the contact laws after the summary: per interface the cumulative
+   !! total with its normal and tangential parts and, for a periodic history, the table of the
+   !! load cycles (module contact_energy), to the listing (when there is one) and the terminal
+   !! (unless quiet).  Nothing without contact.
+   subroutine list_dissipation(m, cf, tab, have_lis, lu, quiet)
+      use records, only: cycle_table_t
+      type(model_t), intent(in) :: m
+      type(contact_fields_t), intent(in) :: cf      !! contact fields of the last step
+      type(cycle_table_t), intent(in) :: tab        !! the cycles of the run
+      logical, intent(in) :: have_lis, quiet
+      integer, intent(in) :: lu
+      if (.not. allocated(cf%dissipated_energy)) return
+      if (have_lis) call write_dissipation(lu, m, cf, tab)
+      if (.not. quiet) call write_dissipation(stdout, m, cf, tab)
+   end subroutine list_dissipation
+
+   !> Print the dissipated energy and the cycle table on unit u.
+   subroutine write_dissipation(u, m, cf, tab)
+      use records, only: cycle_table_t
+      integer, intent(in) :: u
+      type(model_t), intent(in) :: m
+      type(contact_fields_t), intent(in) :: cf
+      type(cycle_table_t), intent(in) :: tab
+      type(run_summary_t) :: s
+      real(dp) :: dn, dt
+      integer :: i, j, ic
+      call unit_names(m, s)
+      write (u, '(a)') ' Energy dissipated by the contact laws, cumulative ('//s%force_unit//' x '//s%length_unit//'):'
+      do i = 1, size(cf%dissipated_energy)
+         dn = 0.0_dp
+         dt = 0.0_dp
+         do j = 1, min(size(m%contact%pairs), size(cf%dissipation_normal))
+            if (m%contact%pairs(j)%iface /= i) cycle
+            dn = dn + cf%dissipation_normal(j)
+            dt = dt + cf%dissipation_tangential(j)
+         end do
+         write (u, '(a,i0,a,es12.4,a,es12.4,a,es12.4)') '  interface ', i, ': total', cf%dissipated_energy(i), &
+            ', normal hysteresis', dn, ', tangential (friction)', dt
+      end do
+      if (tab%ncycle > 0) then
+         write (u, '(a,i0,a)') ' Load cycles of the history: ', tab%ncycle, &
+            ' (energy per cycle; amplitudes are half ranges of the interface''s total F_T and mean u_T)'
+         write (u, '(a)') '  cycle  increments    iface      energy  F_T amplitude  slip amplitude' // &
+            '  secant stiffness  loss factor  damping ratio'
+         do ic = 1, tab%ncycle
+            do i = 1, size(tab%energy, 1)
+               write (u, '(i7,i7,a,i6,i8,es12.4,es15.4,es16.4,es18.4,es13.4,es15.4)') ic, tab%first(ic), ' -', &
+                  tab%last(ic), i, tab%energy(i, ic), tab%force_amplitude(i, ic), tab%slip_amplitude(i, ic), &
+                  tab%secant_stiffness(i, ic), tab%loss_factor(i, ic), tab%damping_ratio(i, ic)
+            end do
+         end do
+      end if
+   end subroutine write_dissipation
 end module run_summary

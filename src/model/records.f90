@@ -28,6 +28,7 @@ module records
    private
 
    public :: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t
+   public :: cycle_table_t
    public :: DRIFT_LIMIT, MAX_DOUBT_LINES
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: STEP_CONVERGED, STEP_UNSETTLED
@@ -130,7 +131,32 @@ module records
       real(dp), allocatable :: zone_width(:)            !! (niface) width of the contact zone in the model [length]
       integer, allocatable :: zone_pairs(:)             !! (niface) closed pairs in it
       real(dp), allocatable :: zone_jump(:)             !! (niface) largest resolution(:) of its pairs [-]
+      !> Energy dissipated by the contact laws (module contact_energy), cumulative from the start of the
+      !! run, in the model's force x length: per pair the frictional work of the irreversible tangential
+      !! displacement and the normal law's hysteresis; per interface their sum, its part in this step, the
+      !! interface's total tangential force and the area-weighted mean u_T of its closed pairs.
+      real(dp), allocatable :: dissipation_tangential(:)  !! (npair)
+      real(dp), allocatable :: dissipation_normal(:)      !! (npair)
+      real(dp), allocatable :: dissipated_energy(:)       !! (niface) cumulative, normal + tangential
+      real(dp), allocatable :: dissipated_increment(:)    !! (niface) in this step
+      real(dp), allocatable :: tangential_force_total(:)  !! (niface) sum of F_T
+      real(dp), allocatable :: slip_mean(:)               !! (niface) area-weighted mean u_T of the closed pairs
    end type contact_fields_t
+
+   !> The load cycles of a periodic history (module contact_energy): per cycle its first and last
+   !! step, and per cycle and interface the energy dissipated, the half ranges of the interface's total
+   !! tangential force and mean slip, their ratio (secant stiffness), the loss factor
+   !! energy / (2 pi U), U = force_amplitude slip_amplitude / 2, and the damping ratio (half of it).
+   type :: cycle_table_t
+      integer :: ncycle = 0
+      integer, allocatable :: first(:), last(:)          !! (ncycle) steps (result groups) of its ends
+      real(dp), allocatable :: energy(:, :)              !! (niface, ncycle) [force x length]
+      real(dp), allocatable :: force_amplitude(:, :)     !! (niface, ncycle) [force]
+      real(dp), allocatable :: slip_amplitude(:, :)      !! (niface, ncycle) [length]
+      real(dp), allocatable :: secant_stiffness(:, :)    !! (niface, ncycle) [force/length]; 0 without slip
+      real(dp), allocatable :: loss_factor(:, :)         !! (niface, ncycle) [-]; 0 where U = 0
+      real(dp), allocatable :: damping_ratio(:, :)       !! (niface, ncycle) [-]
+   end type cycle_table_t
 
    !> What a run uses, for the header of the listing and the terminal and the
    !! root attributes of the result file (the model is not written back).
