@@ -91,11 +91,12 @@ contains
          imat = m%matno(ie)
          elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
          ierr = -1
-         if (rules(nn)%ngp == body%gp_start(ie + 1) - body%gp_start(ie)) &
+         if (rules(nn)%ngp == body%gp_start(ie + 1) - body%gp_start(ie)) then
             call element_error_energy(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
                                       m%mats(imat)%thick, rules(nn)%ngp, rules(nn)%shp, rules(nn)%der, rules(nn)%w, &
                                       sstar(:, 1:nn, ie), body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1), &
                                       e2(ie), u2(ie), ierr)
+         end if
          if (ierr /= 0) then
             call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (error estimate): no valid Gauss rule or det J <= 0')
             return
@@ -117,8 +118,9 @@ contains
       body%energy_norm = sqrt(sum(u2))
       body%estimated = .true.
       if (allocated(m%contact%pairs) .and. allocated(cf%pressure)) then
-         if (size(m%contact%pairs) > 0 .and. size(cf%pressure) == size(m%contact%pairs)) &
+         if (size(m%contact%pairs) > 0 .and. size(cf%pressure) == size(m%contact%pairs)) then
             call interface_resolution(m, cf)
+         end if
       end if
    end subroutine estimate_error
 

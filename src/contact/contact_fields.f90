@@ -32,7 +32,7 @@ contains
          where (area > 0.0_dp)
             cf%pressure = st%s%fn/area
             cf%shear = st%s%ft/area
-         elsewhere
+         else where
             cf%pressure = 0.0_dp
             cf%shear = 0.0_dp
          end where

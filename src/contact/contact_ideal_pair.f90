@@ -278,8 +278,9 @@ contains
                ! the cone, not converged; the update lam_n <- F_n lowers its bound
                outside = max(outside, abs(st%ft(j)) - md%mu*max(st%fn(j), 0.0_dp))
             end if
-            if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_SLIP) &
+            if (ifc%friction /= FRICTION_NONE .and. md%tstate == TS_SLIP) then
                coulomb = max(coulomb, abs(abs(st%ft(j)) - md%mu*st%fn(j)))
+            end if
          end associate
       end do
       st%violation = viol

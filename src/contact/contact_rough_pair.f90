@@ -399,8 +399,9 @@ contains
          end if
 
          ! Newton stiffness for the next solve of a RETURN update
-         if (returning .and. md%closed .and. .not. held_now) &
+         if (returning .and. md%closed .and. .not. held_now) then
             md%kn = newton_normal_stiffness(ifc, md, pr%area, s%fn, fnprev, fpred, fn, u, dun)
+         end if
 
          ! 3. tangential (SPEC §4.3 item 3 and 4)
          if (md%closed .and. ifc%friction /= FRICTION_NONE) then
@@ -530,8 +531,9 @@ contains
             if (.not. unloaded) call flag(changed, md%nswitch, chatter)
          end if
       end if
-      if (md%tstable .and. abs(dut) > 0.0_dp) &
+      if (md%tstable .and. abs(dut) > 0.0_dp) then
          md%kt = min(max(abs(ft - merge(0.0_dp, s%ft, md%newly_closed))/abs(dut), KSEC_LOW*md%kte), md%kte)
+      end if
    end subroutine tangential_return
 
    !> The bit of a tangential state (stick; branch -, +; slip -, 0 (unloaded), +) in

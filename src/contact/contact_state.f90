@@ -278,11 +278,13 @@ contains
          associate (s => st%s(j))
             write (b, '(i0)') j
             if (s%closed .and. s%fn < -tol) call bad('pair '//trim(b)//' is closed with a tensile normal force')
-            if (.not. s%closed .and. (abs(s%fn) > 0.0_dp .or. abs(s%ft) > 0.0_dp)) &
+            if (.not. s%closed .and. (abs(s%fn) > 0.0_dp .or. abs(s%ft) > 0.0_dp)) then
                call bad('pair '//trim(b)//' is open but carries a force')
+            end if
             if (abs(s%ft) > s%mu*max(s%fn, 0.0_dp) + tol) call bad('pair '//trim(b)//' has |F_T| > mu F_n')
-            if (s%ve < ve_old(j) - 1.0e-14_dp*max(1.0_dp, ve_old(j))) &
+            if (s%ve < ve_old(j) - 1.0e-14_dp*max(1.0_dp, ve_old(j))) then
                call bad('pair '//trim(b)//': the effective slip decreased')
+            end if
          end associate
       end do
       if (present(pairs)) pairs = pack([(j, j=1, size(st%s))], hit)

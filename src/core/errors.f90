@@ -40,7 +40,7 @@ module errors
    integer, parameter :: EXIT_DOUBTFUL = 4        !! completed with doubts (frozen states, drift, invariants)
 
    !> Set by skip_exit_handlers: terminate ends the process without the exit handlers.
-   logical, save :: quick_exit = .false.
+   logical :: quick_exit = .false.
 
    !> One input error, located in a file.
    type :: input_error_t

@@ -44,10 +44,10 @@ module parallel
    !> Length of a command (the handler decides what the words mean).
    integer, parameter, public :: COMMAND_WORDS = 4
 
-   logical, save :: initialized = .false.
-   logical, save :: serving = .false.       ! root: the workers wait in serve_commands
-   integer, save :: my_rank = 0
-   integer, save :: n_ranks = 1
+   logical :: initialized = .false.
+   logical :: serving = .false.       ! root: the workers wait in serve_commands
+   integer :: my_rank = 0
+   integer :: n_ranks = 1
 
    !> Broadcast from the root to every process.
    interface broadcast
@@ -86,8 +86,9 @@ contains
       if (ierr /= MPI_SUCCESS) call fatal_internal('MPI_Init failed', 'parallel.F90', __LINE__)
       call mpi_comm_rank(MPI_COMM_WORLD, my_rank, ierr)
       call mpi_comm_size(MPI_COMM_WORLD, n_ranks, ierr)
-      if (c_atexit(c_funloc(finish_at_exit)) /= 0) &
+      if (c_atexit(c_funloc(finish_at_exit)) /= 0) then
          call fatal_internal('cannot register the MPI finalization at exit', 'parallel.F90', __LINE__)
+      end if
       if (my_rank /= 0) then
          ! a worker has no terminal: every message appears once, from the root
          open (unit=stdout, file='/dev/null', action='write', status='old')

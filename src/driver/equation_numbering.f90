@@ -92,9 +92,10 @@ contains
       end if
       write (u, '(a)') ' Renumbering  : '//rep%method//' ('//rep%reason//')'
       write (u, '(a)') ' Profile      : user order '//profile_text(rep%profile_before, rep%mean_before, rep%max_before)
-      if (rep%method /= RENUMBER_NONE) &
+      if (rep%method /= RENUMBER_NONE) then
          write (u, '(a)') '                '//rep%method//'        '// &
          profile_text(rep%profile_after, rep%mean_after, rep%max_after)
+      end if
    end subroutine write_numbering_report
 
    !> "skyline N, mean column height H, max M".

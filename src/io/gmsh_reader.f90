@@ -600,6 +600,13 @@ contains
             ents(k, dim)%nphys = nphys
             do j = 1, nphys
                read (line(b(1, first + j):b(2, first + j)), *, iostat=ios) ents(k, dim)%phys(j)
+               if (ios /= 0) then
+                  call errors%add('E-GMSH', '$Entities: physical tag '//itoa(j)//' of entity '// &
+                                  itoa(ents(k, dim)%tag)//': expected an integer, found "'// &
+                                  short(line(b(1, first + j):b(2, first + j)))//'"', file=t%path, line=il)
+                  ok = .false.
+                  return
+               end if
                ents(k, dim)%phys(j) = abs(ents(k, dim)%phys(j))
             end do
          end do

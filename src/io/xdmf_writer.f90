@@ -122,7 +122,7 @@ contains
       inquire (file=tmp, size=nbytes)
       if (ierr == 0 .and. nbytes < pos - 1) ierr = -1
       if (ierr /= 0) then
-         open (newunit=u, file=tmp, status='old', iostat=k)
+         open (newunit=u, file=tmp, status='old', action='readwrite', iostat=k)
          if (k == 0) close (u, status='delete')
          return
       end if

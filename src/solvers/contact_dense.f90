@@ -213,7 +213,7 @@ contains
       ! the positions of the pairs whose springs changed since A_0
       m = 0
       pairs: do j = 1, size(ppos, 2)
-         if (all(abs(kc(:, :, j) - this%kc0(:, :, j)) <= 0.0_dp)) cycle
+         if (all(abs(kc(:, :, j) - this%kc0(:, :, j)) <= 0.0_dp)) cycle pairs
          do k = 1, size(ppos, 1)
             p = ppos(k, j)
             if (p <= 0) cycle

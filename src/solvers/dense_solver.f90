@@ -107,8 +107,9 @@ contains
    !> Set every assembled value to zero.
    subroutine dense_zero(this)
       class(dense_solver_t), intent(inout) :: this
-      if (this%state == ST_EMPTY) &
+      if (this%state == ST_EMPTY) then
          call fatal_internal('dense solver: zero called before analyse', 'dense_solver.f90', __LINE__)
+      end if
       this%k = 0.0_dp
       this%n_outside = 0
       this%bad_eq = 0

@@ -69,9 +69,9 @@ module mumps_instance
       integer :: key = 0
       type(dmumps_struc), pointer :: id => null()
    end type worker_slot_t
-   type(worker_slot_t), allocatable, save :: slots(:)
+   type(worker_slot_t), allocatable :: slots(:)
    !> Root: keys handed out so far.
-   integer, save :: last_key = 0
+   integer :: last_key = 0
 
 contains
 
@@ -137,8 +137,9 @@ contains
    subroutine serve_mumps(cmd)
       integer, intent(in) :: cmd(:)   !! (MUMPS_SERVICE, job, key, sym)
       integer :: k
-      if (size(cmd) /= COMMAND_WORDS .or. cmd(1) /= MUMPS_SERVICE) &
+      if (size(cmd) /= COMMAND_WORDS .or. cmd(1) /= MUMPS_SERVICE) then
          call fatal_internal('mumps worker: unknown command '//itoa(cmd(1)), 'mumps_instance.f90', __LINE__)
+      end if
       if (cmd(2) == JOB_START) then
          k = free_slot()
          slots(k)%key = cmd(3)

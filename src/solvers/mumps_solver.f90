@@ -247,8 +247,9 @@ contains
             return
          end if
          this%ordering_used = id%infog(7)
-         if (this%ordering_used == 1 .and. effective_ordering(this) == ORDERING_METIS) &
+         if (this%ordering_used == 1 .and. effective_ordering(this) == ORDERING_METIS) then
             this%ordering_used = ORDERING_METIS
+         end if
       end associate
       this%analysis_count = this%analysis_count + 1
       this%analysed = .true.
@@ -473,8 +474,9 @@ contains
    !> Set every assembled value to zero (the pattern and the analysis stay).
    subroutine mumps_zero(this)
       class(mumps_solver_t), intent(inout) :: this
-      if (this%state == ST_EMPTY) &
-         call fatal_internal('mumps solver: zero called before analyse', 'mumps_solver.f90', __LINE__)
+      if (this%state == ST_EMPTY) then
+        call fatal_internal('mumps solver: zero called before analyse', 'mumps_solver.f90', __LINE__)
+      end if
       if (this%mumps%started()) this%mumps%id%a(:) = 0.0_dp
       this%n_outside = 0
       this%first_outside = 0

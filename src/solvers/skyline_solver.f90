@@ -126,8 +126,9 @@ contains
    !> Set every stored value to zero, ready for a fresh assembly.
    subroutine skyline_zero(this)
       class(skyline_solver_t), intent(inout) :: this
-      if (this%state == ST_EMPTY) &
+      if (this%state == ST_EMPTY) then
          call fatal_internal('skyline solver: zero called before analyse', 'skyline_solver.f90', __LINE__)
+      end if
       this%a = 0.0_dp
       this%n_outside = 0
       this%first_outside = 0
@@ -392,8 +393,9 @@ contains
       class(skyline_solver_t), intent(in) :: this
       real(dp) :: h
       h = 0.0_dp
-      if (this%neq > 0 .and. allocated(this%jdiag)) &
+      if (this%neq > 0 .and. allocated(this%jdiag)) then
          h = real(this%jdiag(this%neq) - this%neq, dp)/real(this%neq, dp)
+      end if
    end function skyline_mean_column_height
 
    !> Largest column height (the half-bandwidth of the profile).

@@ -247,8 +247,9 @@ contains
    !> Set every assembled value to zero (the pattern and the symbolic analysis stay).
    subroutine umf_zero(this)
       class(umfpack_solver_t), intent(inout) :: this
-      if (this%state == ST_EMPTY) &
+      if (this%state == ST_EMPTY) then
          call fatal_internal('umfpack solver: zero called before analyse', 'umfpack_solver.f90', __LINE__)
+      end if
       call drop_numeric(this)
       this%ax = 0.0_c_double
       this%n_outside = 0
