@@ -529,12 +529,32 @@ def orderings_table(lrows):
               f"Schur set-up / factorization " + ", ".join(f"{x:.2f}" for x in sc_fa))
 
 
+def pairs_table(runs):
+    """The n_c axis: every run with a tied run beside it, as a ratio to that run (--pairs, --tied)."""
+    rows = [r for r in runs if r.get("ratio_tied")]
+    if not rows:
+        return
+    print("| pairs | contact equations (4 a pair, 2 held on x = 0) | DOFs | path | rc | solutions | per increment "
+          "| total CPU [s] | tied run [s] | total / tied run | peak [MB] | max |du|/|u| |")
+    print("|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        pairs = int(r["pairs"])
+        diff = f"{float(r['max_rel_diff']):.1e}" if r.get("max_rel_diff") else "-"
+        print(f"| {pairs:,} | {4 * pairs - 2:,} | {int(r['dofs']):,} | {r['path']} | {r['rc']} | {r.get('solutions') or '-'} "
+              f"| {r.get('sol_per_inc') or '-'} | {float(r['cpu_s']):.2f} | {float(r['tied_cpu_s']):.2f} "
+              f"| {float(r['ratio_tied']):.1f} | {float(r['peak_mb']):.0f} | {diff} |")
+    print()
+
+
 def report(out, plot):
     """The tables of docs/performance.md and the log-log plot, from OUT's CSV files."""
     runs = []
     if os.path.exists(os.path.join(out, "scaling.csv")):
         with open(os.path.join(out, "scaling.csv")) as f:
             runs = list(csv.DictReader(f))
+    pairs_table(runs)
+    if not os.path.exists(os.path.join(out, "linear.csv")):
+        return 0
     with open(os.path.join(out, "linear.csv")) as f:
         lrows = list(csv.DictReader(f))
     # the main tables: the default ordering's figures (files of earlier runs have no ordering column)
