@@ -541,8 +541,8 @@ def pairs_table(runs):
         pairs = int(r["pairs"])
         diff = f"{float(r['max_rel_diff']):.1e}" if r.get("max_rel_diff") else "-"
         print(f"| {pairs:,} | {4 * pairs - 2:,} | {int(r['dofs']):,} | {r['path']} | {r['rc']} "
-              f"| {r.get('solutions') or '-'} | {r.get('sol_per_inc') or '-'} | {float(r['cpu_s']):.2f} | {float(r['tied_cpu_s']):.2f} "
-              f"| {float(r['ratio_tied']):.1f} | {float(r['peak_mb']):.0f} | {diff} |")
+              f"| {r.get('solutions') or '-'} | {r.get('sol_per_inc') or '-'} | {float(r['cpu_s']):.2f} "
+              f"| {float(r['tied_cpu_s']):.2f} | {float(r['ratio_tied']):.1f} | {float(r['peak_mb']):.0f} | {diff} |")
     print()
 
 
