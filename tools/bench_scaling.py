@@ -3,6 +3,7 @@
 
     tools/bench_scaling.py [--sizes 1e4 3e4 ...] [--paths skyline:on mumps:on ...]
                            [--spheres a5 a10 a20] [--no-linear] [--no-first] [--orderings amd metis]
+                           [--pairs 301 1001 ...] [--tied]
                            [--out DIR] [--generate-only] [--exe PATH] [--timeout S]
     tools/bench_scaling.py --report [--out DIR] [--plot FILE]
 
@@ -44,6 +45,15 @@ MUMPS ordering (amd: MUMPS's AMD; metis: METIS's nested dissection given as a us
 after the other on the same mesh, so that the orderings are compared in one sitting; the report then
 adds a table of analysis, ordering, factorization and Schur set-up times per ordering.  `--paths`
 with no path runs bench_contact alone.
+
+--pairs gives the n_c axis (issue 28): the interface with that many pairs (pairs - 1 equal
+segments on both contact lines, 4 contact equations a pair but the 2 held on x = 0), the mesh
+growing away from it to keep about the requested equations (a mesh too small for its interface
+comes out larger); a size with other than 301 pairs is labelled SIZE_pPAIRS.  --tied runs, per
+mesh, the same model with the interface tied (one conforming mesh, GEO_TIED) through one
+linear increment with MUMPS: the yardstick of the n_c axis, its CPU time in OUT/scaling.csv with
+each path's ratio to it and the path's solutions per increment.  A path SOLVER:AUTO runs the
+deck's default, OPTIONS CONDENSE AUTO.
 
 --spheres adds the rough sphere of example 5.2 (P = 200 N, c_n = 0.8, NEWTON, 5 increments) with
 contact spacing a_H/5, a_H/10, a_H/20 (tools/k2d/examples.py), run along the same paths.

@@ -47,10 +47,10 @@ module contact_system_factory
    !> With the MUMPS solver AUTO weighs the Schur complement against the full
    !! system (`schur_pays`) up to this many contact equations: its dense
    !! arrays take about 40 n_c^2 bytes (S, S's factor, V, F^-1, F^-1 + D:
-   !! 0.65 GB measured at 4 004, 1.4 GB at this limit), and beyond it the full
+   !! 0.65 GB measured at 4 002, 1.4 GB at this limit), and beyond it the full
    !! system is taken whatever the model's size (measured, issue 28: 1 001
-   !! pairs, 4 004 contact equations, on 1e5 DOFs, the Schur path in 16.7 s
-   !! against 80 s for the full system; 3 001 pairs, 12 004 contact equations,
+   !! pairs, 4 002 contact equations, on 1e5 DOFs, the Schur path in 16.7 s
+   !! against 115 s for the full system; 3 001 pairs, 12 002 contact equations,
    !! on 1.9e4 DOFs more than 100 s by the 8th of 50 increments, where the full
    !! system takes about 30 s).
    integer, parameter :: AUTO_MAX_SCHUR_EQUATIONS = 6000
