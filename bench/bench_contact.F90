@@ -37,6 +37,7 @@ program bench_contact
    use dof_map, only: dof_map_t
    use model_input, only: read_model
    use equation_numbering, only: numbering_report_t, number_equations
+   use run_plan, only: run_plan_t, ORDERING_USER
    use linear_solver, only: linear_solver_t
    use solver_factory, only: create_solver
    use assembly, only: coupling_t, assemble_bodies
@@ -60,6 +61,7 @@ program bench_contact
    integer, allocatable :: xadj(:), adjncy(:), links(:, :), ceq(:), pos(:), ppos(:, :)
    real(dp), allocatable :: diag(:), kref(:, :, :), b(:), x(:), y(:), g(:), dk(:, :, :)
    character(len=512) :: deck
+   type(run_plan_t) :: plan
    character(len=16) :: ord
    integer :: j, k, nc
    integer(i8) :: nnzf, nnzs
@@ -73,7 +75,9 @@ program bench_contact
       stop 2
    end if
    call pair_links(m%contact%pairs, links)
-   call number_equations(m, 'MUMPS', links, map, xadj, adjncy, rep, st, ties=m%ties)
+   plan%ordering = ORDERING_USER       ! the mesh's order: MUMPS orders the equations itself
+   plan%ordering_reason = 'MUMPS orders the equations'
+   call number_equations(m, plan, links, map, xadj, adjncy, rep, st, ties=m%ties)
    call check('numbering')
    call get_command_argument(2, ord)
    call create_solver('mumps', s, st)

@@ -3,6 +3,7 @@
 
     tools/bench_scaling.py [--sizes 1e4 3e4 ...] [--paths skyline:on mumps:on ...]
                            [--spheres a5 a10 a20] [--no-linear] [--no-first] [--orderings amd metis]
+                           [--pairs 301 1001 ...] [--tied]
                            [--out DIR] [--generate-only] [--exe PATH] [--timeout S]
     tools/bench_scaling.py --report [--out DIR] [--plot FILE]
 
@@ -44,6 +45,15 @@ MUMPS ordering (amd: MUMPS's AMD; metis: METIS's nested dissection given as a us
 after the other on the same mesh, so that the orderings are compared in one sitting; the report then
 adds a table of analysis, ordering, factorization and Schur set-up times per ordering.  `--paths`
 with no path runs bench_contact alone.
+
+--pairs gives the n_c axis (issue 28): the interface with that many pairs (pairs - 1 equal
+segments on both contact lines, 4 contact equations a pair but the 2 held on x = 0), the mesh
+growing away from it to keep about the requested equations (a mesh too small for its interface
+comes out larger); a size with other than 301 pairs is labelled SIZE_pPAIRS.  --tied runs, per
+mesh, the same model with the interface tied (one conforming mesh, GEO_TIED) through one
+linear increment with MUMPS: the yardstick of the n_c axis, its CPU time in OUT/scaling.csv with
+each path's ratio to it and the path's solutions per increment.  A path SOLVER:AUTO runs the
+deck's default, OPTIONS CONDENSE AUTO.
 
 --spheres adds the rough sphere of example 5.2 (P = 200 N, c_n = 0.8, NEWTON, 5 increments) with
 contact spacing a_H/5, a_H/10, a_H/20 (tools/k2d/examples.py), run along the same paths.
@@ -113,10 +123,67 @@ Physical Curve("base") = {{14, 15}};
 """
 
 
-def deck_text(name, msh, condense, target, neq, first_only=False):
+# The same model with the interface tied (one conforming mesh, the foundation's top under the
+# punch the punch's base): its linear solve is the yardstick of the n_c axis ("tied run").
+GEO_TIED = """// Scaling benchmark, the interface tied: about {target} equations (tools/bench_scaling.py).
+a = {a}; H = {h}; L = {l}; D = {d};
+hc = a/{nc}; g = {g:.8g}; hmax = {hmax};
+Point(1) = {{0, 0, 0}}; Point(2) = {{a, 0, 0}}; Point(3) = {{a, H, 0}}; Point(4) = {{0, H, 0}};
+Line(1) = {{1, 2}}; Line(2) = {{2, 3}}; Line(3) = {{3, 4}}; Line(4) = {{4, 1}};
+Curve Loop(1) = {{1, 2, 3, 4}}; Plane Surface(1) = {{1}};
+Point(13) = {{L, 0, 0}}; Point(14) = {{L, -D, 0}}; Point(15) = {{a, -D, 0}}; Point(16) = {{0, -D, 0}};
+Line(12) = {{2, 13}}; Line(13) = {{13, 14}}; Line(14) = {{14, 15}};
+Line(15) = {{15, 16}}; Line(16) = {{16, 1}}; Line(17) = {{2, 15}};
+Curve Loop(2) = {{1, 17, 15, 16}}; Plane Surface(2) = {{2}};
+Curve Loop(3) = {{12, 13, 14, -17}}; Plane Surface(3) = {{3}};
+Transfinite Curve{{1}} = {nc} + 1;
+Field[1] = Distance; Field[1].CurvesList = {{1}}; Field[1].NumPointsPerCurve = 400;
+Field[2] = MathEval; Field[2].F = Sprintf("Min(%g, %g + %g*F1)", hmax, hc, g);
+Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 0; Mesh.MeshSizeFromPoints = 0; Mesh.MeshSizeFromCurvature = 0;
+Mesh.Algorithm = 6; Mesh.RecombineAll = 1; Mesh.RecombinationAlgorithm = 1;
+Physical Surface("punch") = {{1}};
+Physical Surface("foundation") = {{2, 3}};
+Physical Curve("top") = {{3}};
+Physical Curve("symmetry") = {{4, 16}};
+Physical Curve("base") = {{14, 15}};
+"""
+
+
+def tied_deck(out, name, target, nseg, g):
+    """The tied model of a mesh (same sizes and growth g): its .geo, .msh and one-increment linear
+    deck; returns the deck's path."""
+    geo = os.path.join(out, name + "_tied.geo")
+    msh = os.path.join(out, name + "_tied.msh")
+    if not os.path.exists(msh):
+        with open(geo, "w") as f:
+            f.write(GEO_TIED.format(target=target, a=A_HALF, h=H_PUNCH, l=L_HALF, d=DEPTH, nc=nseg, g=g,
+                                    hmax=H_MAX))
+        r = subprocess.run(["gmsh", "-2", "-format", "msh41", geo, "-o", msh], capture_output=True, text=True)
+        if r.returncode != 0 or not os.path.exists(msh):
+            raise SystemExit(f"gmsh failed on {geo}:\n{r.stdout[-2000:]}\n{r.stderr[-2000:]}")
+    text = deck_text(name + "_tied", os.path.basename(msh), "AUTO", target, 2 * msh_nodes(msh), pairs=0)
+    head, _, _ = text.partition("CONTACT\n")
+    deck = os.path.join(out, name + "_tied.dat")
+    with open(deck, "w") as f:
+        f.write(head.replace(", 50 Newton increments", ", interface tied, one linear increment")
+                + "INCREMENTS\n    1       1.0\nEND\n")
+    return deck
+
+
+def geo_growth(geo):
+    """The growth g of a .geo file written by make_mesh."""
+    with open(geo) as f:
+        for line in f:
+            if line.startswith("hc = "):
+                return float(line.split("g = ")[1].split(";")[0])
+    raise ValueError(f"{geo}: no growth")
+
+
+def deck_text(name, msh, condense, target, neq, first_only=False, pairs=N_CONTACT + 1):
     """The deck of one size and CONDENSE choice (first_only: cut to its first increment)."""
     c = ["# Scaling benchmark (tools/bench_scaling.py): rough punch on a foundation, plane strain,",
-         f"# {neq} DOFs (target {target}), 301 contact pairs, 50 Newton increments; units N, mm,",
+         f"# {neq} DOFs (target {target}), {pairs} contact pairs, 50 Newton increments; units N, mm,",
          f"# N/mm2, roughness constants in um and kgf/cm2 (UNITS KGF_UM).  Mesh {msh} from {name}.geo.",
          "TITLE",
          f"Scaling benchmark: rough punch on foundation, {neq} DOFs, CONDENSE {condense}",
@@ -158,10 +225,10 @@ def deck_text(name, msh, condense, target, neq, first_only=False):
     return "\n".join(c) + "\n"
 
 
-def nodes_estimate(g):
+def nodes_estimate(g, nseg=N_CONTACT):
     """Nodes of a quadrilateral mesh of size h(d) = min(h_max, h_c + g d): the integral of
     1/h^2 over both bodies (d = distance to the contact line, midpoint rule)."""
-    hc = A_HALF / N_CONTACT
+    hc = A_HALF / nseg
 
     def integral(x0, x1, y0, y1, n=400):
         xs = x0 + (np.arange(n) + 0.5) * (x1 - x0) / n
@@ -174,16 +241,16 @@ def nodes_estimate(g):
     return integral(0, A_HALF, 0, H_PUNCH) + integral(0, L_HALF, -DEPTH, 0)
 
 
-def growth_for(neq_target):
+def growth_for(neq_target, nseg=N_CONTACT):
     """The growth g whose estimated mesh has neq_target equations (2 per node), by bisection
     on log g; 0 when even the uniform mesh is smaller."""
     nodes = neq_target / 2.0
-    if nodes_estimate(0.0) <= nodes:
+    if nodes_estimate(0.0, nseg) <= nodes:
         return 0.0
     lo, hi = 1e-6, 10.0
     for _ in range(60):
         mid = math.sqrt(lo * hi)
-        if nodes_estimate(mid) > nodes:
+        if nodes_estimate(mid, nseg) > nodes:
             lo = mid
         else:
             hi = mid
@@ -199,14 +266,15 @@ def msh_nodes(path):
     raise ValueError(f"{path}: no $Nodes section")
 
 
-def make_mesh(out, name, target):
-    """Write NAME.geo and mesh it; adjust the growth once if gmsh's mesh is off by > 10 %."""
+def make_mesh(out, name, target, nseg=N_CONTACT):
+    """Write NAME.geo and mesh it; adjust the growth once if gmsh's mesh is off by > 10 %
+    (nseg contact segments: nseg + 1 pairs; a mesh too small for them comes out larger)."""
     neq = float(target)
-    g = growth_for(neq)
+    g = growth_for(neq, nseg)
     for attempt in range(3):
         geo = os.path.join(out, name + ".geo")
         with open(geo, "w") as f:
-            f.write(GEO.format(target=target, a=A_HALF, h=H_PUNCH, l=L_HALF, d=DEPTH, nc=N_CONTACT,
+            f.write(GEO.format(target=target, a=A_HALF, h=H_PUNCH, l=L_HALF, d=DEPTH, nc=nseg,
                                g=g, hmax=H_MAX))
         msh = os.path.join(out, name + ".msh")
         r = subprocess.run(["gmsh", "-2", "-format", "msh41", geo, "-o", msh], capture_output=True, text=True)
@@ -217,7 +285,7 @@ def make_mesh(out, name, target):
         if abs(ratio - 1.0) <= 0.10 or g == 0.0:
             return msh, got
         neq = neq / ratio                 # aim the estimate so that the mesh lands on the target
-        g = growth_for(neq)
+        g = growth_for(neq, nseg)
     return msh, got
 
 
@@ -318,6 +386,10 @@ def main():
     p.add_argument("--orderings", nargs="+", default=[""], choices=["amd", "metis"],
                    help="MUMPS orderings for bench_contact (default: the solver's)")
     p.add_argument("--spheres", nargs="*", default=[], choices=sorted(SPHERES))
+    p.add_argument("--pairs", nargs="+", type=int, default=[N_CONTACT + 1],
+                   help="contact pairs of the punch's interface (the n_c axis; default 301)")
+    p.add_argument("--tied", action="store_true",
+                   help="also run each mesh's model with the interface tied, one linear increment (the yardstick)")
     p.add_argument("--no-linear", action="store_true", help="skip bench_contact (one linear solve, Schur parts)")
     p.add_argument("--no-first", action="store_true", help="skip the runs cut to the first increment")
     p.add_argument("--out", default=os.path.join(ROOT, "build", "bench_scaling"))
@@ -332,8 +404,8 @@ def main():
         return report(args.out, args.plot)
     for path in args.paths:
         s, _, c = path.partition(":")
-        if s not in [n.lower() for n in SOLVERS if n != "AUTO"] or c.upper() not in ("ON", "OFF"):
-            raise SystemExit(f"bench_scaling: a path is SOLVER:ON or SOLVER:OFF, found {path!r}")
+        if s not in [n.lower() for n in SOLVERS if n != "AUTO"] or c.upper() not in ("ON", "OFF", "AUTO"):
+            raise SystemExit(f"bench_scaling: a path is SOLVER:ON, SOLVER:OFF or SOLVER:AUTO, found {path!r}")
     os.makedirs(args.out, exist_ok=True)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     exe = None if args.generate_only else find_or_build(args.exe)
@@ -347,20 +419,28 @@ def main():
     rows, linear = [], []
     print(f"{'size':>5s} {'DOFs':>9s} {'path':>12s} {'rc':>7s} {'solutions':>9s} {'CPU [s]':>9s} "
           f"{'first [s]':>9s} {'peak [MB]':>9s} {'max |du|/|u|':>12s}", flush=True)
-    for size in args.sizes:
-        name = f"punch_{size}"
+    for size, pairs in [(s, q) for q in args.pairs for s in args.sizes]:
+        name = f"punch_{size}" if pairs == N_CONTACT + 1 else f"punch_{size}_p{pairs}"
+        label = size if pairs == N_CONTACT + 1 else f"{size}_p{pairs}"
         msh = os.path.join(args.out, name + ".msh")
         if os.path.exists(msh) and os.path.exists(os.path.join(args.out, name + ".geo")):
             neq_mesh = 2 * msh_nodes(msh)          # made by an earlier run: kept
         else:
-            msh, neq_mesh = make_mesh(args.out, name, float(size))
+            msh, neq_mesh = make_mesh(args.out, name, float(size), pairs - 1)
         decks, firsts = {}, {}
-        for cond in ("ON", "OFF"):
+        for cond in ("ON", "OFF", "AUTO"):
             for first, store in ((False, decks), (True, firsts)):
                 deck = os.path.join(args.out, f"{name}_condense_{cond.lower()}{'_first' if first else ''}.dat")
                 with open(deck, "w") as f:
-                    f.write(deck_text(name, os.path.basename(msh), cond, size, neq_mesh, first_only=first))
+                    f.write(deck_text(name, os.path.basename(msh), cond, size, neq_mesh, first_only=first,
+                                      pairs=pairs))
                 store[cond] = deck
+        tied = None
+        if args.tied and not args.generate_only:
+            tdeck = tied_deck(args.out, name, size, pairs - 1, geo_growth(os.path.join(args.out, name + ".geo")))
+            trc, tcpu, trss = run(exe, tdeck, os.path.splitext(tdeck)[0] + ".h5", "mumps", args.timeout)
+            tied = (tcpu, trss) if trc == 0 else None
+            print(f"{label:>5s} tied linear run (mumps): rc {trc}, {tcpu:.2f} s, peak {trss:.0f} MB", flush=True)
         print(f"{size:>5s} {neq_mesh:9d} mesh {os.path.basename(msh)}, decks {name}_condense_on/off[_first].dat",
               flush=True)
         if args.generate_only:
@@ -377,18 +457,29 @@ def main():
                       f"condense {lin['condense_s']:.4f} s, expand {lin['expand_s']:.4f} s, dense Cholesky "
                       f"{lin['dense_factorize_s']:.4f} s, in the springs' coordinates {lin['proj_factorize_s']:.4f} s "
                       f"[{lin['ordering']}]", flush=True)
-        run_paths(exe, size, neq_mesh, decks, args.paths, args.out, args.timeout, rows,
+        n0 = len(rows)
+        run_paths(exe, label, neq_mesh, decks, args.paths, args.out, args.timeout, rows,
                   None if args.no_first else firsts)
+        for r in rows[n0:]:
+            r["pairs"] = pairs
+            if r.get("solutions"):
+                r["sol_per_inc"] = round(r["solutions"] / 50.0, 2)
+            if tied:
+                r["tied_cpu_s"] = round(tied[0], 3)
+                r["ratio_tied"] = round(r["cpu_s"] / tied[0], 2)
+            print(f"{label:>5s} {r['path']:>12s} pairs {pairs}: {r.get('sol_per_inc', '-')} solutions per increment"
+                  + (f", {r['ratio_tied']:.1f} x the tied run" if tied else ""), flush=True)
     for tag in args.spheres:
         if args.generate_only:
             continue
         deck = sphere_deck(args.out, tag)
         dofs = 2 * int(open(deck).read().split("CONTROL")[1].split("\n")[2].split()[0])
-        run_paths(exe, f"sphere_{tag}", dofs, {"ON": deck, "OFF": deck}, [q for q in args.paths if
+        run_paths(exe, f"sphere_{tag}", dofs, {"ON": deck, "OFF": deck, "AUTO": deck}, [q for q in args.paths if
                   q.upper().endswith(":ON")], args.out, args.timeout, rows)
     if rows:
         write_csv(os.path.join(args.out, "scaling.csv"), rows,
-                  ["size", "dofs", "path", "rc", "solutions", "cpu_s", "first_cpu_s", "peak_mb", "max_rel_diff"],
+                  ["size", "dofs", "path", "rc", "solutions", "cpu_s", "first_cpu_s", "peak_mb", "max_rel_diff",
+                   "pairs", "sol_per_inc", "tied_cpu_s", "ratio_tied"],
                   args.append)
     if linear:
         write_csv(os.path.join(args.out, "linear.csv"), linear, ["size", "dofs"] + LINEAR_FIELDS, args.append)
@@ -448,12 +539,63 @@ def orderings_table(lrows):
               f"Schur set-up / factorization " + ", ".join(f"{x:.2f}" for x in sc_fa))
 
 
+def pairs_table(runs):
+    """The n_c axis: every run with a tied run beside it, as a ratio to that run (--pairs, --tied)."""
+    rows = [r for r in runs if r.get("ratio_tied")]
+    if not rows:
+        return
+    print("| pairs | contact equations (4 a pair, 2 held on x = 0) | DOFs | path | rc | solutions | per increment "
+          "| total CPU [s] | tied run [s] | total / tied run | peak [MB] | max |du|/|u| |")
+    print("|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        pairs = int(r["pairs"])
+        diff = f"{float(r['max_rel_diff']):.1e}" if r.get("max_rel_diff") else "-"
+        print(f"| {pairs:,} | {4 * pairs - 2:,} | {int(r['dofs']):,} | {r['path']} | {r['rc']} "
+              f"| {r.get('solutions') or '-'} | {r.get('sol_per_inc') or '-'} | {float(r['cpu_s']):.2f} "
+              f"| {float(r['tied_cpu_s']):.2f} | {float(r['ratio_tied']):.1f} | {float(r['peak_mb']):.0f} | {diff} |")
+    print()
+
+
+def pairs_plot(runs, plot):
+    """Total / tied run against the contact equations, one line per path and mesh size (the n_c axis)."""
+    rows = [r for r in runs if r.get("ratio_tied") and r["rc"] == "0"]
+    if not rows:
+        return
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.8))
+    series = {}
+    for r in rows:
+        size = r["size"].split("_p")[0]
+        series.setdefault((size, r["path"]), []).append((4 * int(r["pairs"]) - 2, float(r["ratio_tied"])))
+    for (size, path), pts in sorted(series.items()):
+        pts.sort()
+        ax.loglog([q[0] for q in pts], [q[1] for q in pts], "-o", label=f"{path}, {size} DOFs")
+    ax.set_xlabel("contact equations")
+    ax.set_ylabel("total CPU / tied linear run")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.suptitle("Rough punch, 50 increments: cost against the number of contact equations")
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(plot) or ".", exist_ok=True)
+    fig.savefig(plot, dpi=110)
+    print(f"wrote {plot}")
+
+
 def report(out, plot):
     """The tables of docs/performance.md and the log-log plot, from OUT's CSV files."""
     runs = []
     if os.path.exists(os.path.join(out, "scaling.csv")):
         with open(os.path.join(out, "scaling.csv")) as f:
             runs = list(csv.DictReader(f))
+    pairs_table(runs)
+    pairs_plot(runs, os.path.splitext(plot)[0] + "_pairs.png")
+    if not os.path.exists(os.path.join(out, "linear.csv")):
+        return 0
     with open(os.path.join(out, "linear.csv")) as f:
         lrows = list(csv.DictReader(f))
     # the main tables: the default ordering's figures (files of earlier runs have no ordering column)

@@ -17,9 +17,10 @@
 !! * with another solver, CONDENSE ON, or AUTO up to
 !!   AUTO_MAX_CONTACT_EQUATIONS contact equations: the condensation by n_c
 !!   solves (condensed_system).
-!! AUTO never condenses beyond AUTO_MAX_CONTACT_EQUATIONS (the dense system of
-!! the contact equations grows as n_c^2 in memory, n_c^3 in work per set of
-!! springs), and the Schur complement needs at least one equation off the
+!! AUTO never condenses beyond AUTO_MAX_CONTACT_EQUATIONS with the condensation
+!! by solves, nor beyond AUTO_MAX_SCHUR_EQUATIONS with MUMPS's Schur complement
+!! (the dense system of the contact equations grows as n_c^2 in memory, n_c^3
+!! in work), and the Schur complement needs at least one equation off the
 !! contact equations (ON falls back to the condensation by solves).
 !!
 !! This file is preprocessed (.F90): the MUMPS system is compiled only when
@@ -37,11 +38,22 @@ module contact_system_factory
 #endif
    implicit none
    private
-   public :: create_contact_system, contact_system_kind, schur_pays, AUTO_MAX_CONTACT_EQUATIONS
+   public :: create_contact_system, contact_system_kind, schur_pays, AUTO_MAX_CONTACT_EQUATIONS, &
+             AUTO_MAX_SCHUR_EQUATIONS
 
    !> CONDENSE AUTO condenses up to this many contact equations (the dense
    !! system of the contact equations grows as n_c^2 in memory, n_c^3 in work).
    integer, parameter :: AUTO_MAX_CONTACT_EQUATIONS = 1500
+   !> With the MUMPS solver AUTO weighs the Schur complement against the full
+   !! system (`schur_pays`) up to this many contact equations: its dense
+   !! arrays take about 40 n_c^2 bytes (S, S's factor, V, F^-1, F^-1 + D:
+   !! 0.65 GB measured at 4 002, 1.4 GB at this limit), and beyond it the full
+   !! system is taken whatever the model's size (measured, issue 28: 1 001
+   !! pairs, 4 002 contact equations, on 1e5 DOFs, the Schur path in 16.7 s
+   !! against 115 s for the full system; 3 001 pairs, 12 002 contact equations,
+   !! on 1.9e4 DOFs more than 100 s by the 8th of 50 increments, where the full
+   !! system takes about 30 s).
+   integer, parameter :: AUTO_MAX_SCHUR_EQUATIONS = 6000
 
    !> The measured costs behind `schur_pays` (docs/performance.md, "Automatic
    !! choice"; CPU seconds, one core, OpenBLAS): one MUMPS factorization of
@@ -84,9 +96,10 @@ contains
          case (CONDENSE_OFF)
             kind = SYSTEM_FULL
          case default
-            if (nc <= AUTO_MAX_CONTACT_EQUATIONS) then
+            if (mumps) then
+               if (nc <= AUTO_MAX_SCHUR_EQUATIONS) kind = merge(SYSTEM_MUMPS_SCHUR, SYSTEM_FULL, schur_pays(neq, nc))
+            else if (nc <= AUTO_MAX_CONTACT_EQUATIONS) then
                kind = SYSTEM_CONDENSED
-               if (mumps) kind = merge(SYSTEM_MUMPS_SCHUR, SYSTEM_FULL, schur_pays(neq, nc))
             end if
          end select
       end if
