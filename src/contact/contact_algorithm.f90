@@ -17,14 +17,14 @@
 !! force vector, and re-exports the names its callers use.
 module contact_algorithm
    use kinds, only: dp
-   use contact_types, only: contact_def_t, contact_pair_t, MAX_PAIR_NODES
+   use contact_types, only: contact_def_t, contact_pair_t, interface_t, MAX_PAIR_NODES
    use contact_element, only: pair_stiffness, pair_kinematics, pair_forces
    use contact_pair_types, only: pair_state_t, pair_mode_t, contact_state_t, MAX_SWITCH, &
                                  NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    use contact_state, only: contact_init, begin_increment, commit_increment, start_force_normal, &
                             drop_regularisation, regularise_slip, check_invariants, frozen_pairs, law_drift, &
                             tangential_drift
-   use contact_rough_pair, only: rough_outcome_t, evaluate_rough_pair
+   use contact_rough_pair, only: rough_outcome_t, evaluate_rough_pair, touching_band
    use contact_ideal_pair, only: evaluate_ideal, augment_multipliers
    implicit none
    private
@@ -32,7 +32,8 @@ module contact_algorithm
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
              pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
-             start_force_normal, frozen_pairs, tangential_drift, drop_regularisation, regularise_slip
+             start_force_normal, frozen_pairs, tangential_drift, drop_regularisation, regularise_slip, &
+             anchor_regularisation, release_anchors
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: MAX_SWITCH
 
@@ -107,6 +108,8 @@ contains
          st%md(j) = r%md
          st%fn(j) = r%fn
          st%ft(j) = r%ft
+         if (st%md(j)%anchored) call anchored_forces(cdef%ifaces(cdef%pairs(j)%iface), st%s(j)%un + st%dun(j), &
+                                                     st%dut(j), st%md(j), st%fn(j), st%ft(j))
          changed(j) = r%changed
          st%chatter = st%chatter .or. r%chatter
       end do
@@ -115,4 +118,62 @@ contains
          call evaluate_ideal(cdef, st, j, changed(j))
       end do
    end subroutine evaluate_pairs
+
+   !> RETURN, the second pass of an increment whose system turned singular
+   !! (regularise_slip), once the out-of-balance force is within its limit and
+   !! only the correction is not: the springs that hold the bodies' rigid-body
+   !! modes at zero load (K_T^e of a pair in slip, carrying no force, and the
+   !! touching spring of a pair above its band, carrying the law's force) become
+   !! elastic elements from the present closure and slip of every closed rough
+   !! pair (anchored_forces, from the next evaluation on).  Without a force of
+   !! their own they move the bodies in that mode by the left-over force over
+   !! their stiffness after every solution, a correction that never shrinks (the
+   !! mode has no other stiffness); with it the next solution balances that
+   !! force.  release_anchors takes their forces off again once converged.
+   pure subroutine anchor_regularisation(st)
+      type(contact_state_t), intent(inout) :: st
+      integer :: k, j
+      do k = 1, size(st%rough)
+         j = st%rough(k)
+         if (.not. st%md(j)%closed) cycle
+         st%md(j)%anchored = .true.
+         st%md(j)%un_anc = st%s(j)%un + st%dun(j)
+         st%md(j)%ut_anc = st%dut(j)
+      end do
+   end subroutine anchor_regularisation
+
+   !> The law's forces again (the anchored springs' taken off) for the residual
+   !! check of a converged pass and the commit: what the springs carried is
+   !! left as out-of-balance force, which must be within the limit.
+   pure subroutine release_anchors(st)
+      type(contact_state_t), intent(inout) :: st
+      integer :: j
+      do j = 1, size(st%md)
+         if (.not. st%md(j)%anchored) cycle
+         st%fn(j) = st%fn(j) - st%md(j)%fn_anc
+         st%ft(j) = st%ft(j) - st%md(j)%ft_anc
+         st%md(j)%fn_anc = 0.0_dp
+         st%md(j)%ft_anc = 0.0_dp
+         st%md(j)%anchored = .false.
+      end do
+   end subroutine release_anchors
+
+   !> The forces of an anchored pair's regularising springs (anchor_regularisation),
+   !! added to the law's fn and ft: the touching spring of a pair above the spring's
+   !! band (where the pair carries the law's force with the spring's stiffness) and
+   !! the K_T^e of a pair in slip, each from the anchor, so that the pair carries
+   !! what the solve predicts for it.
+   pure subroutine anchored_forces(ifc, u, dut, md, fn, ft)
+      type(interface_t), intent(in) :: ifc
+      real(dp), intent(in) :: u, dut           !! closure and slip increment now
+      type(pair_mode_t), intent(inout) :: md
+      real(dp), intent(inout) :: fn, ft
+      md%fn_anc = 0.0_dp
+      md%ft_anc = 0.0_dp
+      if (.not. md%closed) return
+      if (md%touching .and. u - md%uthr > touching_band(ifc, md, .false.)) md%fn_anc = md%kn*(u - md%un_anc)
+      if (md%tstate == TS_SLIP .and. .not. md%tstable .and. md%kt > 0.0_dp) md%ft_anc = md%kt*(dut - md%ut_anc)
+      fn = fn + md%fn_anc
+      ft = ft + md%ft_anc
+   end subroutine anchored_forces
 end module contact_algorithm

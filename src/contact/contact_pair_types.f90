@@ -70,6 +70,10 @@ module contact_pair_types
       logical :: tfixed = .false.         !! ideal law: the tangential mode cycled (IDEAL_TSWITCH changes);
                                           !! the secant stiffness ksec in the matrix from then on (evaluate_ideal)
       real(dp) :: ksec = 0.0_dp           !! ideal law, tfixed: secant of the projection over du_T
+      logical :: anchored = .false.       !! RETURN, the second pass at zero load: the regularising springs
+                                          !! are elastic from (un_anc, ut_anc) (anchor_regularisation)
+      real(dp) :: un_anc = 0.0_dp, ut_anc = 0.0_dp  !! closure and slip increment at the anchor
+      real(dp) :: fn_anc = 0.0_dp, ft_anc = 0.0_dp  !! the anchored springs' forces in the last evaluation
    end type pair_mode_t
 
    type :: contact_state_t

@@ -17,7 +17,8 @@ module increment_attempt
    use contact_assembly, only: contact_springs_t
    use contact_types, only: contact_options_t, contact_pair_t
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, augment_multipliers, &
-                                drop_regularisation, regularise_slip
+                                drop_regularisation, regularise_slip, &
+                                anchor_regularisation, release_anchors
    use contact_start, only: increment_pressure
    use model, only: model_t
    use step_audit, only: check_finite_springs
@@ -197,7 +198,11 @@ contains
    !! the pairs open one after another on an unloading to zero.  The solutions
    !! of both passes are counted; if the second does not converge either, the
    !! attempt fails with the singular system of the first (a body that nothing
-   !! holds, every pair slipping, keeps that message).
+   !! holds, every pair slipping, keeps that message).  In the second pass, once
+   !! the out-of-balance force is within its limit but the correction is not,
+   !! the regularising springs are anchored (contact_algorithm's
+   !! anchor_regularisation: they carry the force they predict from there on) and
+   !! released before the converged pass's force is checked once more.
    subroutine attempt_increment(an, m, st, dlam, carry, fext_new, first, att, status)
       type(analysis_t), intent(inout) :: an
       type(model_t), intent(in) :: m
@@ -235,7 +240,7 @@ contains
       logical, allocatable :: changed(:)
       integer :: iter, maxit
       real(dp) :: fscale, dnorm
-      logical :: need_matrix, done, again, newton, hold
+      logical :: need_matrix, done, again, newton, hold, anchored
 
       allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), rpred(an%springs%nd, an%npair), &
                 changed(an%npair))
@@ -252,6 +257,7 @@ contains
       newton = an%returning .and. st%has_rough
       att%dnorm = 0.0_dp
       hold = .false.
+      anchored = .false.
       call load_increment(an%coup, an%map, an%fcase, an%ucase, an%restrained, dlam, carry, rhs, att%du)
       fscale = max(maxval([0.0_dp, abs(rhs)]), maxval(abs(fext_new)), 1.0e-300_dp)
       ! spring forces and modes at the start of the increment
@@ -314,8 +320,24 @@ contains
          call update_modes(again)
          if (again) cycle
          att%dnorm = dnorm      ! (counts for the Newton return of rough pairs only)
+         ! the second pass: the force is balanced, the correction is not (a mode that only
+         ! force-free regularising springs hold): the springs elastic from here on
+         if (slip_reg .and. .not. anchored .and. att%rnorm <= att%rtol .and. &
+             dnorm > m%contact%opts%tol_displacement) then
+            call anchor_regularisation(st)
+            anchored = .true.
+         end if
          if (att%rnorm <= att%rtol .and. &
              (.not. newton .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
+            if (anchored) then
+               ! the law's forces: what the anchored springs carried is out-of-balance
+               ! force, which must be within the limit
+               call release_anchors(st)
+               anchored = .false.
+               call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
+               call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, m%contact%opts%tol_residual, att)
+               if (att%rnorm > att%rtol) exit
+            end if
             if (.not. st%has_ideal) then
                att%converged = .true.
                exit
