@@ -143,6 +143,13 @@ contains
       end do
       do ip = 1, m%npoin
          if (.not. used(ip) .and. .not. is_rigid_reference(m%contact_spec, ip)) then
+            if (allocated(m%mesh_file)) then
+               ! an extra node of a MESH block (NODE card): the only nodes of no element there
+               call errors%add('E-UNUSED', 'MESH/NODE: extra node '//itoa(ip)//' is the reference node of no '// &
+                               'rigid body (CONTACT, RIGID): its displacement would be undetermined', &
+                               file=m%deck_file, line=m%node_line(ip), col=1)
+               cycle
+            end if
             call errors%add('E-UNUSED', 'NODES: node '//itoa(ip)//' belongs to no element '// &
                             '(its displacement would be undetermined; only the reference node of a rigid body '// &
                             'in CONTACT may be a node of no element)', file=m%deck_file, line=m%node_line(ip), col=1)
