@@ -58,7 +58,7 @@ module incremental
    use pretension_section, only: pretension_links
    use pretension_assembly, only: assemble_pretension, pretension_nodal_forces, section_forces, section_shortening
    use pretension_control, only: attempt_with_pretension
-   use pretension_report, only: list_pretension_sections, list_pretension_step
+   use pretension_report, only: list_pretension_sections, list_pretension_step, list_pretension_summary
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
                       list_progress, list_completed, list_failed, list_doubts, close_listing, list_reversals
    implicit none
@@ -100,6 +100,7 @@ module incremental
       logical :: quiet = .false.
       logical :: set_up_failed = .false.           !! the run stopped before its first increment
       integer(i8) :: t0 = 0, rate = 1              !! clock at the start of the run
+      type(step_record_t) :: pret_last             !! the last step with pretension forces (summary)
    end type outputs_t
 
 contains
@@ -511,6 +512,7 @@ contains
          call list_step(out%lu, m, srec, res%body_fields_t, res%fields, out%lis_path, status, out%lis_level /= 'FULL')
       if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) &
          call list_pretension_step(out%lu, m, srec)
+      if (allocated(srec%pretension_force)) out%pret_last = srec
       if (.not. status%ok()) return
       res%completed = srec%step
       call system_clock(t1)
@@ -543,6 +545,7 @@ contains
          end if
          if (.not. out%set_up_failed) call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, &
                                             res%drift, res%contact%s%ua, res%contact%s%pa, .true., out%lu, .true., out%t0, out%rate)
+         if (.not. out%set_up_failed) call list_pretension_summary(out%lu, m, out%pret_last)
          call close_listing(out%lu, out%lis_path, status)
       end if
       if (status%ok() .and. res%doubts%steps > 0) then
@@ -568,6 +571,7 @@ contains
       if (.not. out%set_up_failed) call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, &
                                                          res%contact%s%ua, res%contact%s%pa, .false., out%lu, &
                                                          out%quiet, out%t0, out%rate)
+      if (.not. (out%set_up_failed .or. out%quiet)) call list_pretension_summary(stdout, m, out%pret_last)
       call out%rf%close(status)
    end subroutine close_outputs
 end module incremental

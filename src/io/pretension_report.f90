@@ -8,7 +8,7 @@ module pretension_report
    use records, only: step_record_t
    implicit none
    private
-   public :: list_pretension_sections, list_pretension_step
+   public :: list_pretension_sections, list_pretension_step, list_pretension_summary
 
 contains
 
@@ -43,4 +43,18 @@ contains
             srec%pretension_shortening(k)
       end do
    end subroutine list_pretension_step
+
+   !> The summary's lines: every section's force and shortening at the last
+   !! step whose body fields were computed (nothing without sections).
+   subroutine list_pretension_summary(u, m, srec)
+      integer, intent(in) :: u
+      type(model_t), intent(in) :: m
+      type(step_record_t), intent(in) :: srec
+      integer :: k
+      if (.not. allocated(srec%pretension_force)) return
+      do k = 1, size(srec%pretension_force)
+         write (u, '(a,i0,a,es17.10,a,es14.7)') ' pretension section "'//m%pretensions(k)%name//'" at increment ', &
+            srec%step, ': force ', srec%pretension_force(k), ', shortening ', srec%pretension_shortening(k)
+      end do
+   end subroutine list_pretension_summary
 end module pretension_report
