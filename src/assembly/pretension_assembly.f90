@@ -38,6 +38,11 @@ module pretension_assembly
    type :: pretension_run_t
       integer :: n = 0                          !! sections
       type(section_springs_t), allocatable :: sections(:)
+      ! the lock's memory (pretension_control): the Jacobian of the closures' increments by the
+      ! holding forces, and the holding force of every section's last locked increment
+      logical :: have_jac = .false.
+      real(dp), allocatable :: jac(:, :)        !! (n, n)
+      real(dp), allocatable :: x_last(:)        !! (n) [force]
    end type pretension_run_t
 
 contains
@@ -55,7 +60,9 @@ contains
       integer :: k, i, ieq(3), ax
       pr%n = 0
       if (allocated(m%pretensions)) pr%n = size(m%pretensions)
-      allocate (pr%sections(pr%n))
+      allocate (pr%sections(pr%n), pr%jac(pr%n, pr%n), pr%x_last(pr%n))
+      pr%jac = 0.0_dp
+      pr%x_last = 0.0_dp
       c = [1.0_dp, -1.0_dp, -1.0_dp]
       do k = 1, pr%n
          associate (p => m%pretensions(k))

@@ -6,11 +6,13 @@
 !! holds that case's factor, a LOCK section keeps its shortening (the mean
 !! closure of its nodes and their copies, section_shortening): the force on
 !! the reference node then is whatever holds it, found by a chord iteration on the increment
-!! -- attempt with the extra forces x, measure the shortening's increments r(x),
-!! a Jacobian of r by one probe per locked section, then x <- x - J^-1 r
-!! until |r| is round-off of delta.  The bodies are linear and the contact
-!! laws piecewise smooth, so without state changes r is affine in x and the
-!! second update is exact; every attempt starts from the committed state.
+!! -- attempt with the extra forces x (first those of the last locked
+!! increment), measure the shortening's increments r(x), update x <- x - J^-1 r
+!! with the Jacobian of r (by one probe per locked section, kept for the next
+!! increments) until |r| is round-off of the model's size.  The bodies are
+!! linear and the contact laws piecewise smooth, so without state changes r is
+!! affine in x and one update is exact; every attempt starts from the
+!! committed state, and the step's solutions count those of all attempts.
 module pretension_control
    use kinds, only: dp
    use errors, only: status_t, STAT_NO_CONVERGENCE
@@ -42,7 +44,7 @@ contains
       integer, allocatable :: lk(:)
       real(dp), allocatable :: x(:), r(:), r0(:), jac(:, :), f0(:, :)
       real(dp) :: h, tol, scale
-      integer :: k, j, it, n
+      integer :: k, j, it, n, spent
 
       lk = [integer ::]
       if (allocated(m%pretensions)) then
@@ -58,23 +60,37 @@ contains
       end if
       f0 = fext_new
       allocate (x(n), r(n), r0(n), jac(n, n))
-      x = 0.0_dp
       scale = max(maxval(abs(fext_new)), an%force_scale, tiny(1.0_dp))
       h = 1.0e-3_dp*scale
       ! the opening is kept to round-off of the model's lengths (1e-13 of its size:
       ! about 1e-10 of a bolt's elongation, below the solution's own accuracy)
       tol = 1.0e-13_dp*max(maxval(abs(m%coord)), tiny(1.0_dp))
+      spent = 0
+      ! the first guess: the holding forces of the sections' last locked increments (equal load
+      ! steps need equal holding forces), then chord updates with the last Jacobian; probes for a
+      ! new Jacobian at the first lock and when the old one does not converge in two updates
+      x = an%pret%x_last(lk)
       call try(x, r)
       if (.not. status%ok() .or. done(r)) return
+      if (an%pret%have_jac) then
+         jac = an%pret%jac(lk, lk)
+         do it = 1, 2
+            x = x - solve_small(jac, r)
+            call try(x, r)
+            if (.not. status%ok() .or. done(r)) return
+         end do
+      end if
       do j = 1, n
          r0 = r
-         x(j) = h
+         x(j) = x(j) + h
          call try(x, r)
          if (.not. status%ok()) return
          jac(:, j) = (r - r0)/h
-         x(j) = 0.0_dp
+         x(j) = x(j) - h
          r = r0
       end do
+      an%pret%jac(lk, lk) = jac
+      an%pret%have_jac = .true.
       do it = 1, MAX_LOCK_ITER
          x = x - solve_small(jac, r)
          call try(x, r)
@@ -100,6 +116,10 @@ contains
             end associate
          end do
          call attempt_increment(an, m, st, dlam, cm, fext_new, first, att, status)
+         ! the step's solutions are those of all its attempts
+         spent = spent + att%solutions
+         att%solutions = spent
+         an%pret%x_last(lk) = xx
          rr = 0.0_dp
          if (.not. status%ok()) return
          do q = 1, n
