@@ -2,8 +2,8 @@
 // shank and nut as one body, the nut modelled as an enlarged end of the shank -- through two
 // steel plates 10 mm thick with a hole of radius 5.5 (clearance 0.5 mm), outer radius 30.
 // The bolt's shank is cut at z = 5 by the physical curve "cut" (the pretension section).
-lb = 1.0;    // element size in the bolt
-lp = 1.25;   // element size in the plates near the hole (coarser outwards)
+lb = 1.5;    // element size in the bolt
+lp = 1.5;   // element size in the plates near the hole (coarser outwards)
 // bolt: nut z -8..0 (r 0..8), shank z 0..20 (r 0..5), head z 20..26 (r 0..8)
 Point(1) = {0, -8, 0, lb}; Point(2) = {8, -8, 0, lb}; Point(3) = {8, 0, 0, lb};
 Point(4) = {5, 0, 0, lb}; Point(5) = {5, 5, 0, lb}; Point(6) = {5, 20, 0, lb};
@@ -16,12 +16,12 @@ Line(7) = {5, 6}; Line(24) = {6, 21}; Line(8) = {21, 7}; Line(9) = {7, 8}; Line(
 Curve Loop(1) = {1, 2, 3, 23, 4, 5, 6}; Plane Surface(1) = {1};      // nut and lower shank
 Curve Loop(2) = {-5, 7, 24, 8, 9, 10, 11}; Plane Surface(2) = {2};   // upper shank and head
 // plate 1 (upper) z 10..20, plate 2 (lower) z 0..10, r 5.5..30
-Point(11) = {5.5, 10, 0, lp}; Point(12) = {30, 10, 0, 2.5}; Point(13) = {30, 20, 0, 2.5};
+Point(11) = {5.5, 10, 0, lp}; Point(12) = {30, 10, 0, 3.0}; Point(13) = {30, 20, 0, 3.0};
 Point(14) = {5.5, 20, 0, lp};
-Point(15) = {5.5, 0, 0, lp}; Point(16) = {30, 0, 0, 2.5}; Point(17) = {30, 10, 0, 2.5};
+Point(15) = {5.5, 0, 0, lp}; Point(16) = {30, 0, 0, 3.0}; Point(17) = {30, 10, 0, 3.0};
 Point(18) = {5.5, 10, 0, lp};
 Point(19) = {14, 20, 0, 1.5}; Point(20) = {14, 0, 0, 1.5};
-Point(23) = {10, 20, 0, 1.25}; Point(24) = {10, 0, 0, 1.25};
+Point(23) = {10, 20, 0, 1.5}; Point(24) = {10, 0, 0, 1.5};
 Line(12) = {11, 12}; Line(13) = {12, 13}; Line(14) = {13, 19}; Line(25) = {19, 23}; Line(15) = {23, 14};
 Line(16) = {14, 11};
 Line(17) = {15, 24}; Line(26) = {24, 20}; Line(18) = {20, 16}; Line(19) = {16, 17}; Line(20) = {17, 18}; Line(21) = {18, 15};
