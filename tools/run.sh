@@ -46,4 +46,11 @@ rc=0
 rm -f "$out/${name}"_{approach,pairs,interface,slip,loops,energy}.png "$out/${name}_stages.md"
 "$K2D_PYTHON" "$K2D_ROOT/tools/plot_history.py" "$out/$name.h5" --stages-file "$out/${name}_stages.md" "${plot_args[@]}"
 echo "results: $out/$name.h5 (HDF5), $out/$name.xdmf (for ParaView), $out/$name.lis (listing), $out/$name.png (plot)"
+# a deck with a pretension section (LOADS/PRETENSION): the joint diagram, the pressure cone and the
+# joint's figures (docs/bolts.md)
+if grep -qiE '^[[:space:]]*PRETENSION' "$deck"; then
+  rm -f "$out/${name}"_{joint,cone}.png "$out/${name}_joint.md"
+  "$K2D_PYTHON" "$K2D_ROOT/tools/plot_joint.py" "$out/$name.h5" -o "$out/$name" > /dev/null
+  echo "joint: $out/${name}_joint.png (joint diagram), $out/${name}_cone.png (pressure cone), $out/${name}_joint.md"
+fi
 exit "$rc"

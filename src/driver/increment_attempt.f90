@@ -23,6 +23,7 @@ module increment_attempt
    use model, only: model_t
    use step_audit, only: check_finite_springs
    use roundoff, only: resolvable_limit
+   use pretension_assembly, only: pretension_run_t
    implicit none
    private
    public :: analysis_t, attempt_t, attempt_failure, describe_singular, out_of_balance, attempt_increment
@@ -54,6 +55,7 @@ module increment_attempt
       integer :: nbody = 0
       real(dp) :: force_scale = tiny(1.0_dp)       !! largest nodal force seen so far
       logical :: warned_closure = .false.
+      type(pretension_run_t) :: pret               !! pretension sections: spring stiffnesses (pretension_assembly)
    end type analysis_t
 
 

@@ -41,7 +41,7 @@ module incremental
    use solver_factory, only: create_solver, plan_run
    use contact_system, only: contact_equations
    use contact_system_factory, only: create_contact_system, contact_system_kind
-   use run_plan, only: run_plan_t, CHOICE_AUTOMATIC, SCHEME_INCREMENTAL, SCHEME_MODIFIED
+   use run_plan, only: run_plan_t, CHOICE_AUTOMATIC, SCHEME_INCREMENTAL, SCHEME_MODIFIED, CONDENSE_OFF
    use assembly, only: assemble_bodies, assemble_load_cases
    use contact_assembly, only: pair_links, spring_nodal_forces
    use body_fields, only: recover_stresses, update_reactions, number_bodies, body_imbalance, &
@@ -51,11 +51,15 @@ module incremental
                          sliding_warning, run_history_t, IMBALANCE_NOT_COMPUTED, &
                          imbalance_limit
    use contact_start, only: init_contact_states, start_pressure
-   use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular, attempt_increment
+   use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular
    use contact_fields, only: build_contact_fields, pair_spacing
    use contact_energy, only: energy_t, energy_init, energy_begin, energy_commit, energy_fields, energy_cycles
    use results_hdf5, only: results_file_t
    use run_summary, only: list_run_summary, list_dissipation
+   use pretension_section, only: pretension_links
+   use pretension_assembly, only: assemble_pretension, pretension_nodal_forces, section_forces, section_shortening
+   use pretension_control, only: attempt_with_pretension
+   use pretension_report, only: list_pretension_sections, list_pretension_step, list_pretension_summary
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
                       list_progress, list_completed, list_failed, list_doubts, close_listing, list_reversals
    implicit none
@@ -99,6 +103,7 @@ module incremental
       logical :: quiet = .false.
       logical :: set_up_failed = .false.           !! the run stopped before its first increment
       integer(i8) :: t0 = 0, rate = 1              !! clock at the start of the run
+      type(step_record_t) :: pret_last             !! the last step with pretension forces (summary)
    end type outputs_t
 
 contains
@@ -186,7 +191,7 @@ contains
       type(analysis_t), intent(inout) :: an
       type(numbering_report_t), intent(out) :: numbering
       type(status_t), intent(inout) :: status
-      integer, allocatable :: xadj(:), adjncy(:), links(:, :)
+      integer, allocatable :: xadj(:), adjncy(:), links(:, :), plinks(:, :)
 
       an%npair = size(m%contact%pairs)
       an%has_contact = an%npair > 0
@@ -196,6 +201,8 @@ contains
       ! equations (ties share equations; RCM order for the skyline solver), pattern
       ! with every contact pair, K_AB
       call pair_links(m%contact%pairs, links)
+      call pretension_links(m, plinks)
+      links = reshape([links, plinks], [2, size(links, 2) + size(plinks, 2)])
       call number_equations(m, plan, links, an%map, xadj, adjncy, numbering, status, ties=m%ties)
       if (.not. status%ok()) return
       call create_solver(solver_name, an%solver, status)
@@ -209,6 +216,7 @@ contains
       allocate (an%diag(an%map%neq), an%absrow(an%map%neq))
       call assemble_bodies(m, an%map, an%solver, an%coup, status, an%diag, an%absrow)
       if (.not. status%ok()) return
+      call assemble_pretension(m, an%map, an%solver, an%pret, an%diag, an%absrow)
       call an%solver%store_base()
       call assemble_load_cases(m, an%fcase, an%ucase, status)
       if (.not. status%ok()) return
@@ -216,6 +224,8 @@ contains
       an%restrained = an%map%id < 0
       call an%springs%init(an%map, m%contact%pairs)
       an%spacing = pair_spacing(m%contact%pairs)
+      ! pretension sections: the lock measures the section between solutions, so the full system
+      if (an%pret%n > 0) plan%condense = CONDENSE_OFF
       if (an%has_contact) plan%contact_system = contact_system_kind(plan%condense, an%npair, &
                                                   size(contact_equations(an%springs%peq, an%map%neq)), an%solver)
       call create_contact_system(plan%contact_system, an%sys)
@@ -286,6 +296,7 @@ contains
          call list_header(out%lu, m, res%info)
          call write_numbering_report(out%lu, numbering)
          call list_method(out%lu, res%info)
+         call list_pretension_sections(out%lu, m)
          if (out%lis_level == 'FULL') call list_input(out%lu, m)
       end if
       call out%rf%create(res%results_path, m, res%body_fields_t, status)
@@ -303,6 +314,7 @@ contains
          call list_header(stdout, m, res%info)
          call write_numbering_report(stdout, numbering)
          call list_method(stdout, res%info)
+         call list_pretension_sections(stdout, m)
          write (stdout, '(a)') ' Results      : '//res%results_path
          if (out%have_lis) write (stdout, '(a)') ' Listing      : '//out%lis_path
          write (stdout, '(a)') repeat('-', 78)
@@ -347,7 +359,7 @@ contains
                call start_pressure(m, an%fcase, dlam, res%contact, status)
                if (.not. status%ok()) exit deck
             end if
-            call attempt_increment(an, m, res%contact, dlam, carry, fext_new, first, att, status)
+            call attempt_with_pretension(an, m, res%contact, dlam, carry, fext_new, first, att, status)
             call check_finite_attempt(att%du, res%contact, an%has_contact, status)
             if (.not. m%autoinc) then
                if (.not. status%ok()) exit deck
@@ -465,15 +477,23 @@ contains
       real(dp), intent(in) :: fext(:, :), ve_old(:)
       type(step_record_t), intent(inout) :: srec
       type(status_t), intent(inout) :: status
-      real(dp), allocatable :: fsp(:, :)
+      real(dp), allocatable :: fsp(:, :), fpm(:)
       real(dp) :: imb
       integer(i8) :: t1
+      integer :: k
 
       ! the body fields where the full displacements were recovered (srec%full)
       if (srec%full) then
          call body_step_fields(m, an, res, fext, fsp, status)
       else
          call spring_nodal_forces(m%contact, res%contact, m%npoin, fsp)
+      end if
+      if (an%pret%n > 0) then
+         ! the sections' springs are internal forces too; the force across each from its elements
+         call pretension_nodal_forces(m, an%pret, res%disp, fsp)
+         if (srec%full) call section_forces(m, res%disp, srec%pretension_force, fpm, status)
+         if (srec%full) srec%pretension_shortening = [(section_shortening(m%pretensions(k), &
+                                                    an%pret%sections(k)%w, res%disp), k=1, an%pret%n)]
       end if
       call check_finite_step(res%body_fields_t, res%contact, an%has_contact, srec%drift, srec%full, status)
       if (.not. status%ok()) return
@@ -497,6 +517,9 @@ contains
       if (srec%written) call out%rf%write_increment(srec, res%body_fields_t, status, res%fields)
       if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) &
          call list_step(out%lu, m, srec, res%body_fields_t, res%fields, out%lis_path, status, out%lis_level /= 'FULL')
+      if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) &
+         call list_pretension_step(out%lu, m, srec)
+      if (allocated(srec%pretension_force)) out%pret_last = srec
       if (.not. status%ok()) return
       res%completed = srec%step
       call system_clock(t1)
@@ -531,6 +554,7 @@ contains
          if (.not. out%set_up_failed) call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, &
                                             res%drift, res%contact%s%ua, res%contact%s%pa, .true., out%lu, .true., out%t0, out%rate)
          if (.not. out%set_up_failed) call list_dissipation(m, res%fields, res%cycles, .true., out%lu, .true.)
+         if (.not. out%set_up_failed) call list_pretension_summary(out%lu, m, out%pret_last)
          call close_listing(out%lu, out%lis_path, status)
       end if
       if (status%ok() .and. res%cycles%ncycle > 0) call out%rf%write_cycles(res%cycles, status)
@@ -558,6 +582,7 @@ contains
                                                          res%contact%s%ua, res%contact%s%pa, .false., out%lu, &
                                                          out%quiet, out%t0, out%rate)
       if (.not. out%set_up_failed) call list_dissipation(m, res%fields, res%cycles, .false., out%lu, out%quiet)
+      if (.not. (out%set_up_failed .or. out%quiet)) call list_pretension_summary(stdout, m, out%pret_last)
       call out%rf%close(status)
    end subroutine close_outputs
 end module incremental

@@ -34,6 +34,7 @@ module model_input
    use solid2d, only: min_jacobian
    use deck_reader, only: read_deck
    use contact_definition, only: define_contact
+   use pretension_section, only: define_pretensions, is_pretension_reference, pretension_links
    use contact_algorithm, only: contact_state_t
    use contact_start, only: init_contact_states, start_pressure
    use assembly, only: assemble_load_cases
@@ -54,6 +55,9 @@ contains
       integer :: n0
 
       call read_deck(path, m, errors, warnings)
+      n0 = errors%n
+      ! pretension sections: nodes duplicated before the contact surfaces are built
+      if (errors%n == 0) call define_pretensions(m, errors)
       n0 = errors%n
       call check_gauss_rules(m, errors)
       if (m%contact_spec%complete .and. errors%n == n0) call define_contact(m, errors, warnings)
@@ -112,7 +116,7 @@ contains
       integer :: ie, nn, ip, k, nbad
       real(dp) :: jmin, elcod(2, MAX_NODE), size2
       logical, allocatable :: used(:)
-      integer, allocatable :: bad_node(:), nolinks(:, :)
+      integer, allocatable :: bad_node(:), nolinks(:, :), plinks(:, :)
       character(len=80), allocatable :: what(:)
       character(len=:), allocatable :: msg
       integer :: n0
@@ -142,7 +146,15 @@ contains
          end if
       end do
       do ip = 1, m%npoin
-         if (.not. used(ip) .and. .not. is_rigid_reference(m%contact_spec, ip)) then
+         if (.not. used(ip) .and. .not. is_rigid_reference(m%contact_spec, ip) .and. &
+             .not. is_pretension_reference(m, ip)) then
+            if (allocated(m%mesh_file)) then
+               ! an extra node of a MESH block (NODE card): the only nodes of no element there
+               call errors%add('E-UNUSED', 'MESH/NODE: extra node '//itoa(ip)//' is the reference node of no '// &
+                               'rigid body (CONTACT, RIGID): its displacement would be undetermined', &
+                               file=m%deck_file, line=m%node_line(ip), col=1)
+               cycle
+            end if
             call errors%add('E-UNUSED', 'NODES: node '//itoa(ip)//' belongs to no element '// &
                             '(its displacement would be undetermined; only the reference node of a rigid body '// &
                             'in CONTACT may be a node of no element)', file=m%deck_file, line=m%node_line(ip), col=1)
@@ -159,8 +171,10 @@ contains
       end if
       if (errors%n > n0) return
 
-      ! bodies joined by ties or contact pairs are checked together
-      allocate (nolinks(2, size(m%ties, 2) + size(m%contact%pairs)))
+      ! bodies joined by ties, contact pairs or pretension sections are checked together
+      call pretension_links(m, plinks)
+      allocate (nolinks(2, size(m%ties, 2) + size(m%contact%pairs) + size(plinks, 2)))
+      nolinks(:, size(m%ties, 2) + size(m%contact%pairs) + 1:) = plinks
       do k = 1, size(m%ties, 2)
          nolinks(:, k) = m%ties(1:2, k)
       end do

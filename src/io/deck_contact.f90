@@ -12,9 +12,9 @@
 !! line in `read_contact_keyword`.
 module deck_contact
    use kinds, only: dp
-   use strings, only: itoa, rtoa
+   use strings, only: itoa, rtoa, same_name
    use deck_lexer, only: deck_t, shown
-   use model, only: model_t
+   use model, only: model_t, node_set_t
    use contact_types, only: interface_t, contact_options_t, LAW_ROUGH, LAW_IDEAL, FRICTION_NONE, &
                             FRICTION_COULOMB, FRICTION_FREDRIKSSON, UNITS_KGF_UM, UNITS_N_UM, &
                             UNITS_MODEL, UPDATE_EXPLICIT, UPDATE_RETURN, SLIP_IRREVERSIBLE, SLIP_GROSS, &
@@ -165,7 +165,7 @@ contains
             if (is_block_card(d, d%peek())) exit
             ic = d%next()
             if (d%is_keyword_card(ic)) then
-               call read_contact_keyword(d, ic, m%npoin, cs, cur)
+               call read_contact_keyword(d, ic, m%npoin, m%node_sets, cs, cur)
                if (cur%mode /= DATA_NONE) call read_data_run(d, m%npoin, cs, cur)
             else
                call read_contact_data(d, ic, m%npoin, cs, cur)
@@ -184,9 +184,10 @@ contains
 
    !> A keyword card of CONTACT: open an interface where the card belongs to
    !! one, then the card's own reader.
-   subroutine read_contact_keyword(d, ic, npoin, cs, cur)
+   subroutine read_contact_keyword(d, ic, npoin, sets, cs, cur)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic, npoin
+      type(node_set_t), allocatable, intent(in) :: sets(:)   !! named node sets (MESH block), for RIGID's NREF
       type(contact_spec_t), intent(inout) :: cs
       type(contact_cursor_t), intent(inout) :: cur
       character(len=*), parameter :: iface_cards(12) = [character(len=10) :: 'LAW', 'UNITS', 'NORMAL', &
@@ -229,7 +230,7 @@ contains
       case ('MATCHING')
          call read_matching(d, ic, cs%ifaces(nif))
       case ('RIGID')
-         call read_rigid(d, ic, npoin, cs, cur)
+         call read_rigid(d, ic, npoin, sets, cs, cur)
       case ('AUGMENTED')
          call read_augmented(d, ic, cs%opts)
       case ('UPDATE', 'SCHEME')
@@ -722,10 +723,12 @@ contains
 
    !> RIGID: SHAPE (11-20), NREF (21-30), then FLAT X1 Y1 X2 Y2 or CIRCLE XC
    !! YC R (31-70) [model length]; POLYLINE takes its vertices from data cards.
-   !! The body becomes side B of the current interface.
-   subroutine read_rigid(d, ic, npoin, cs, cur)
+   !! The body becomes side B of the current interface.  NREF may instead be
+   !! the name of a node set of one node (a MESH block's NODE card).
+   subroutine read_rigid(d, ic, npoin, sets, cs, cur)
       type(deck_t), intent(inout) :: d
       integer, intent(in) :: ic, npoin
+      type(node_set_t), allocatable, intent(in) :: sets(:)
       type(contact_spec_t), intent(inout) :: cs
       type(contact_cursor_t), intent(inout) :: cur
       character(len=:), allocatable :: shape
@@ -743,7 +746,7 @@ contains
          return
       end if
       call d%get_word(ic, 11, 20, 'CONTACT/RIGID', 'SHAPE', shape, ok)
-      call d%get_int(ic, 21, 30, 'CONTACT/RIGID', 'NREF', nref, ok)
+      call reference_node(d, ic, sets, nref, ok)
       if (.not. ok) return
       if (nref < 1 .or. nref > npoin) then
          call d%error_at(ic, 21, 'E-RANGE', 'CONTACT/RIGID: NREF (columns 21-30) expected the reference node '// &
@@ -797,6 +800,41 @@ contains
       cs%rigids = [cs%rigids, rb]
       cs%ifaces(nif)%law%rigid = size(cs%rigids)
    end subroutine read_rigid
+
+   !> RIGID's NREF (columns 21-30): a node number, or the name of a node set
+   !! of exactly one node (the extra node of a MESH block's NODE card).
+   subroutine reference_node(d, ic, sets, nref, ok)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      type(node_set_t), allocatable, intent(in) :: sets(:)
+      integer, intent(out) :: nref
+      logical, intent(inout) :: ok
+      character(len=:), allocatable :: f
+      integer :: k
+      nref = 0
+      f = trim(adjustl(d%field_text(ic, 21, 30)))
+      if (len(f) == 0 .or. verify(f(1:1), 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ_') /= 0) then
+         call d%get_int(ic, 21, 30, 'CONTACT/RIGID', 'NREF', nref, ok)
+         return
+      end if
+      if (allocated(sets)) then
+         do k = 1, size(sets)
+            if (.not. same_name(sets(k)%name, f)) cycle
+            if (size(sets(k)%nodes) /= 1) then
+               call d%error_at(ic, 21, 'E-RIGID', 'CONTACT/RIGID: NREF (columns 21-30) names the set "'//f// &
+                               '" of '//itoa(size(sets(k)%nodes))//' nodes; expected one node (a NODE card of '// &
+                               'the MESH block)')
+               ok = .false.
+               return
+            end if
+            nref = sets(k)%nodes(1)
+            return
+         end do
+      end if
+      call d%error_at(ic, 21, 'E-RIGID', 'CONTACT/RIGID: NREF (columns 21-30) expected a node number or the name '// &
+                      'of an extra node (MESH block, NODE card), found "'//shown(f)//'"')
+      ok = .false.
+   end subroutine reference_node
 
    !> A vertex of a POLYLINE profile: X (1-10), Y (11-20) [model length].
    subroutine read_vertex(d, ic, xy, ok)

@@ -28,6 +28,8 @@ module deck_reader
    use topology, only: element_edge_nodes, nedges
    use contact_spec, only: is_rigid_reference
    use deck_contact, only: read_ties, read_contact
+   use pretension, only: pretension_t
+   use pretension_cards, only: is_pretension_card, read_pretension_card, read_pretension_nodes, finish_pretensions
    use mesh_block, only: read_mesh_block
    use group_cards, only: is_group_card, read_group_restraint, read_group_point_load, read_group_edge_load, &
                           check_restraint_overlaps
@@ -76,7 +78,8 @@ contains
       m%listing_level = 'SHORT'
       m%renumber = 'AUTO'
       m%condense = 'AUTO'
-      allocate (m%fixes(0), m%point_loads(0), m%edge_loads(0), m%body_loads(0), m%mats(0), m%ties(3, 0))
+      allocate (m%fixes(0), m%point_loads(0), m%edge_loads(0), m%body_loads(0), m%mats(0), m%ties(3, 0), &
+                m%pretensions(0))
       allocate (m%contact%ifaces(0), m%contact%pairs(0))
       if (.not. loaded) then
          errors = d%errors
@@ -849,8 +852,9 @@ contains
       type(edge_load_t), allocatable :: el(:)
       type(body_load_t), allocatable :: bl(:)
       integer :: npl, nel, nbl
+      type(pretension_t), allocatable :: pts(:)
 
-      allocate (pl(16), el(16), bl(4))
+      allocate (pl(16), el(16), bl(4), pts(0))
       npl = 0
       nel = 0
       nbl = 0
@@ -864,10 +868,14 @@ contains
             if (sub == 'EDGE') call read_group_edge_load(d, ic, m, el, nel)
             cycle
          end if
+         if (sub == 'PRETENSION' .and. is_pretension_card(d, ic)) then
+            call read_pretension_card(d, ic, m, pts)
+            cycle
+         end if
          if (d%is_keyword_card(ic)) then
             sub = d%keyword(ic)
-            if (all(sub /= [character(len=5) :: 'POINT', 'EDGE', 'BODY'])) then
-               call d%error_at(ic, 1, 'E-CARD', 'LOADS: expected a sub-block keyword POINT, EDGE or BODY, '// &
+            if (all(sub /= [character(len=10) :: 'POINT', 'EDGE', 'BODY', 'PRETENSION'])) then
+               call d%error_at(ic, 1, 'E-CARD', 'LOADS: expected a sub-block keyword POINT, EDGE, BODY or PRETENSION, '// &
                                'or a load card, found "'//shown(trim(d%cards(ic)%text))//'"')
                sub = 'BAD'
             end if
@@ -889,6 +897,18 @@ contains
             if (nel >= size(el)) el = [el, el]
             nel = nel + 1
             call read_edge_load(d, ic, m, el(nel))
+         case ('PRETENSION')
+            if (size(pts) == 0) then
+               call d%error_at(ic, 1, 'E-CARD', 'LOADS/PRETENSION: expected a GROUP or SECTION card, found "'// &
+                               shown(trim(d%cards(ic)%text))//'"')
+               sub = 'BAD'
+            else if (pts(size(pts))%group) then
+               if (pts(size(pts))%line > 0) call d%error_at(ic, 1, 'E-CARD', 'LOADS/PRETENSION: node numbers '// &
+                  'follow a SECTION card only (a GROUP takes the nodes of its set), found "'// &
+                  shown(trim(d%cards(ic)%text))//'"')
+            else
+               call read_pretension_nodes(d, ic, m, pts(size(pts)))
+            end if
          case ('BODY')
             if (nbl >= size(bl)) bl = [bl, bl]
             nbl = nbl + 1
@@ -904,6 +924,7 @@ contains
       m%point_loads = pack(pl(1:npl), pl(1:npl)%node > 0)
       m%edge_loads = pack(el(1:nel), el(1:nel)%ielem > 0)
       m%body_loads = pack(bl(1:nbl), bl(1:nbl)%line > 0)
+      call finish_pretensions(d, pts, m)
    end subroutine read_loads
 
    subroutine read_point_load(d, ic, m, p)
@@ -1084,6 +1105,7 @@ contains
       logical :: ok
 
       ncase = max(1, maxval([1, m%fixes%icase, m%point_loads%icase, m%edge_loads%icase, m%body_loads%icase]))
+      if (allocated(m%pretensions)) ncase = max(ncase, maxval([1, m%pretensions%icase]))
       m%ncase = ncase
       allocate (target(ncase), prev(ncase), lam(ncase, 0:64))
       lam = 0.0_dp
@@ -1188,7 +1210,9 @@ contains
             call move_alloc(added, m%fixes)
          end if
       end if
-      m%ncase = max(1, maxval([1, m%fixes%icase, m%point_loads%icase, m%edge_loads%icase, m%body_loads%icase]))
+      if (.not. allocated(m%pretensions)) allocate (m%pretensions(0))
+      m%ncase = max(1, maxval([1, m%fixes%icase, m%point_loads%icase, m%edge_loads%icase, m%body_loads%icase, &
+                               m%pretensions%icase]))
       if (m%nincs == 0) then
          m%nincs = 1
          allocate (m%lambda(m%ncase, 0:1))

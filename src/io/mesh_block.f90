@@ -10,6 +10,10 @@
 !!   deck's folder unless it starts with `/`); exactly one.
 !! * `MATERIAL`: physical surface name in columns 11-40, MATNO in 41-45; one
 !!   card per physical surface of the mesh.
+!! * `NODE`: an extra node of no element -- the reference node of a rigid
+!!   body -- named in columns 11-30, at X (31-40), Y (41-50).  Extra nodes
+!!   are numbered after the mesh's nodes in the order of their cards, and
+!!   each becomes a node set of its name (for GROUP cards and RIGID's NREF).
 !!
 !! Errors in the cards are reported at the deck; errors in the mesh file at
 !! the .msh file and line (see gmsh_reader).
@@ -17,7 +21,8 @@ module mesh_block
    use errors, only: error_list_t
    use strings, only: itoa, same_name
    use deck_lexer, only: deck_t, shown
-   use model, only: model_t
+   use kinds, only: dp
+   use model, only: model_t, node_set_t, find_node_set
    use gmsh_reader, only: gmsh_mesh_t, read_gmsh, gmsh_to_model
    implicit none
    private
@@ -42,9 +47,12 @@ contains
       character(len=:), allocatable :: key, file, name
       character(len=64), allocatable :: names(:)
       integer, allocatable :: mats(:), lines(:)
-      integer :: ic, imat, n0, nmat, k, gmsh_line, gmsh_card
+      integer :: ic, imat, n0, nmat, k, gmsh_line, gmsh_card, nextra
       logical :: cok
       type(gmsh_mesh_t) :: msh
+      character(len=20), allocatable :: xnames(:)
+      integer, allocatable :: xlines(:)
+      real(dp), allocatable :: xy(:, :)
 
       n0 = d%errors%n
       file = ''
@@ -53,7 +61,8 @@ contains
       gmsh_line = 0
       gmsh_card = 0
       nmat = 0
-      allocate (names(8), mats(8), lines(8))
+      nextra = 0
+      allocate (names(8), mats(8), lines(8), xnames(0), xlines(0), xy(2, 0))
       do while (.not. d%at_end())
          ic = d%peek()
          if (is_block_card(d, ic)) exit
@@ -112,8 +121,10 @@ contains
             names(nmat) = name
             mats(nmat) = imat
             lines(nmat) = d%cards(ic)%line
+         case ('NODE')
+            call read_extra_node(d, ic, xnames, xlines, xy)
          case default
-            call d%error_at(ic, 1, 'E-MESH', 'MESH: expected a GMSH or MATERIAL card, found "'// &
+            call d%error_at(ic, 1, 'E-MESH', 'MESH: expected a GMSH, MATERIAL or NODE card, found "'// &
                             shown(trim(d%cards(ic)%text))//'"')
          end select
       end do
@@ -139,8 +150,88 @@ contains
             e%card = shown(trim(d%cards(gmsh_card)%text), 200)
          end associate
       end do
+      if (d%errors%n == n0 .and. size(xnames) > 0) call add_extra_nodes(d, xnames, xlines, xy, m)
       ok = d%errors%n == n0
    end subroutine read_mesh_block
+
+   !> NODE: an extra node, its name in columns 11-30 and X (31-40), Y (41-50);
+   !! appended to the lists (a name given twice is reported).
+   subroutine read_extra_node(d, ic, xnames, xlines, xy)
+      type(deck_t), intent(inout) :: d
+      integer, intent(in) :: ic
+      character(len=20), allocatable, intent(inout) :: xnames(:)
+      integer, allocatable, intent(inout) :: xlines(:)   !! the cards (indices) of the extra nodes
+      real(dp), allocatable, intent(inout) :: xy(:, :)
+      character(len=:), allocatable :: name
+      real(dp) :: x, y
+      logical :: cok
+      integer :: k
+      cok = .true.
+      name = trim(adjustl(d%field_text(ic, 11, 30)))
+      if (len(name) == 0) then
+         call d%error_at(ic, 11, 'E-MISSING', 'MESH/NODE: field NAME (columns 11-30) expected the name of the '// &
+                         'extra node, found a blank field')
+         cok = .false.
+      end if
+      call d%get_real(ic, 31, 40, 'MESH/NODE', 'X', x, cok)
+      call d%get_real(ic, 41, 50, 'MESH/NODE', 'Y', y, cok)
+      if (cok) call d%check_coordinate(ic, 31, 'MESH/NODE', 'X', x, cok)
+      if (cok) call d%check_coordinate(ic, 41, 'MESH/NODE', 'Y', y, cok)
+      if (cok .and. len_trim(d%field_text(ic, 51, 100000)) > 0) then
+         call d%error_at(ic, 51, 'E-EXTRA', 'MESH/NODE: expected NAME (columns 11-30), X (31-40) and Y (41-50), '// &
+                         'found more: "'//shown(trim(adjustl(d%field_text(ic, 51, 100000))))//'"')
+         cok = .false.
+      end if
+      if (.not. cok) return
+      do k = 1, size(xnames)
+         if (same_name(trim(xnames(k)), name)) then
+            call d%error_at(ic, 11, 'E-DUPLICATE', 'MESH/NODE: the name "'//name//'" is given twice (first on line '// &
+                            itoa(d%cards(xlines(k))%line)//')')
+            return
+         end if
+      end do
+      xnames = [xnames, name]
+      xlines = [xlines, ic]
+      xy = reshape([xy, x, y], [2, size(xlines)])
+   end subroutine read_extra_node
+
+   !> Append the extra nodes to the mesh read from the file: numbers
+   !! npoin+1, ..., gmsh tag 0, the NODE card's line, and one node set each.
+   !! A name that is already a set of the mesh is reported at its card.
+   subroutine add_extra_nodes(d, xnames, xlines, xy, m)
+      type(deck_t), intent(inout) :: d
+      character(len=*), intent(in) :: xnames(:)
+      integer, intent(in) :: xlines(:)              !! their cards (indices)
+      real(dp), intent(in) :: xy(:, :)
+      type(model_t), intent(inout) :: m
+      type(node_set_t), allocatable :: tn(:)
+      integer :: k, i, n0, np
+      n0 = d%errors%n
+      do k = 1, size(xnames)
+         if (find_node_set(m, trim(xnames(k))) > 0) then
+            call d%error_at(xlines(k), 11, 'E-DUPLICATE', 'MESH/NODE: "'//trim(xnames(k))//'" is already a '// &
+                            'physical group of '//m%mesh_file//'; give the extra node another name')
+         end if
+      end do
+      if (d%errors%n > n0) return
+      np = m%npoin
+      m%coord = reshape([m%coord, xy], [2, np + size(xnames)])
+      m%node_tag = [m%node_tag, (0, k=1, size(xnames))]
+      m%node_line = [m%node_line, (d%cards(xlines(k))%line, k=1, size(xlines))]
+      m%npoin = np + size(xnames)
+      ! (component by component: gfortran 12 loses deferred-length character
+      ! components in array constructors of derived types)
+      allocate (tn(size(m%node_sets) + size(xnames)))
+      do i = 1, size(m%node_sets)
+         tn(i)%name = m%node_sets(i)%name
+         tn(i)%nodes = m%node_sets(i)%nodes
+      end do
+      do k = 1, size(xnames)
+         tn(size(m%node_sets) + k)%name = trim(xnames(k))
+         tn(size(m%node_sets) + k)%nodes = [np + k]
+      end do
+      call move_alloc(tn, m%node_sets)
+   end subroutine add_extra_nodes
 
    !> Path of a mesh file named in a deck: relative to the deck's folder.
    pure function mesh_path(deck_file, file) result(p)

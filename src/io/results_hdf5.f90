@@ -300,6 +300,12 @@ contains
       if (step%contact) call attr_real0(gid, 'law_drift_tangential', step%drift_t, err)
       if (step%ideal) call attr_real0(gid, 'penetration', step%penetration, err)
       if (step%ideal) call attr_int(gid, 'augmentations', step%augmentations, err)
+      if (allocated(step%pretension_force)) then
+         ! pretension sections, in the order of their cards: the force across each (tension
+         ! positive, from the elements' internal forces at the cut) and its shortening
+         call attr_real1(gid, 'pretension_force', step%pretension_force, err)
+         call attr_real1(gid, 'pretension_shortening', step%pretension_shortening, err)
+      end if
       call attr_real0(gid, 'imbalance', step%imbalance, err)
       call attr_real0(gid, 'imbalance_limit', step%imbalance_limit, err)
       call attr_int(gid, 'invariant_violations', step%violations, err)

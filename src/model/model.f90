@@ -10,6 +10,7 @@ module model
    use kinds, only: dp
    use contact_types, only: contact_def_t
    use contact_spec, only: contact_spec_t
+   use pretension, only: pretension_t
    use strings, only: same_name
    implicit none
    private
@@ -135,6 +136,8 @@ module model
       integer :: results_every = 1                    !! result file: every n-th step and the last
       ! equation numbering: AUTO (RCM for skyline), RCM or NONE (OPTIONS RENUMBER)
       character(len=:), allocatable :: renumber
+      ! pretension sections (LOADS/PRETENSION; module pretension), empty if none
+      type(pretension_t), allocatable :: pretensions(:)
    end type model_t
 
 contains
@@ -189,6 +192,7 @@ contains
       if (.not. allocated(m%contact%ifaces)) allocate (m%contact%ifaces(0))
       if (.not. allocated(m%contact%rigids)) allocate (m%contact%rigids(0))
       if (.not. allocated(m%condense)) m%condense = 'AUTO'
+      if (.not. allocated(m%pretensions)) allocate (m%pretensions(0))
       m%contact%active = size(m%contact%pairs) > 0
    end subroutine complete_model
 

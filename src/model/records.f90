@@ -86,6 +86,10 @@ module records
                                                !! states, drift, violations, naming the pairs
       character(len=:), allocatable :: warnings  !! what the step did beyond the laws' range, though not
                                                  !! doubtful (unloading beyond p*), naming the pairs ('' if nothing)
+      ! pretension sections (unallocated or empty without): the force across each (tension positive,
+      ! from the internal forces of the elements on the +axis side of the cut) and its shortening
+      real(dp), allocatable :: pretension_force(:)       !! (nsection) [force]
+      real(dp), allocatable :: pretension_shortening(:)  !! (nsection) -delta [length]
    end type step_record_t
 
    !> Nodal and Gauss-point fields of the bodies after a step.

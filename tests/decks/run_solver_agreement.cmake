@@ -64,6 +64,14 @@ if("mumps" IN_LIST SOLVERS AND text MATCHES "\nCONTACT[ ]*\n" AND neq LESS_EQUAL
   # beside the run's other files (a gmsh deck was copied there with its mesh)
   set(off_deck "${dir}/${name}_condense_off.dat")
   file(WRITE "${off_deck}" "${text}")
+  # a deck of a committed .msh (no GEO): the mesh goes beside the copy
+  if(NOT GEO AND text MATCHES "\nGMSH +([^\n#]+)")
+    string(STRIP "${CMAKE_MATCH_1}" msh_rel)
+    get_filename_component(deck_dir "${DECK}" DIRECTORY)
+    if(EXISTS "${deck_dir}/${msh_rel}")
+      file(COPY "${deck_dir}/${msh_rel}" DESTINATION "${dir}")
+    endif()
+  endif()
   execute_process(COMMAND "${EXE}" "${off_deck}" -q -s mumps -o "${dir}/${name}_mumps_off.h5"
                   -l "${dir}/${name}_mumps_off.lis"
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

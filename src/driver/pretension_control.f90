@@ -1,0 +1,160 @@
+!> Pretension sections in the increment loop: the lock, and the force
+!! across each section after a step.
+!!
+!! A section is force-controlled through the load case of its card (the
+!! reference node carries -F lambda along the axis).  In an increment that
+!! holds that case's factor, a LOCK section keeps its shortening (the mean
+!! closure of its nodes and their copies, section_shortening): the force on
+!! the reference node then is whatever holds it, found by a chord iteration on the increment
+!! -- attempt with the extra forces x (first those of the last locked
+!! increment), measure the shortening's increments r(x), update x <- x - J^-1 r
+!! with the Jacobian of r (by one probe per locked section, kept for the next
+!! increments) until |r| is round-off of the model's size.  The bodies are
+!! linear and the contact laws piecewise smooth, so without state changes r is
+!! affine in x and one update is exact; every attempt starts from the
+!! committed state, and the step's solutions count those of all attempts.
+module pretension_control
+   use kinds, only: dp
+   use errors, only: status_t, STAT_NO_CONVERGENCE
+   use strings, only: itoa, rtoa
+   use model, only: model_t
+   use pretension, only: PRETENSION_LOCK
+   use pretension_assembly, only: section_shortening
+   use contact_algorithm, only: contact_state_t
+   use increment_attempt, only: analysis_t, attempt_t, attempt_increment
+   implicit none
+   private
+   public :: attempt_with_pretension, MAX_LOCK_ITER
+
+   integer, parameter :: MAX_LOCK_ITER = 12    !! chord updates of one increment's lock
+
+contains
+
+   !> attempt_increment, with the LOCK sections whose case is held kept at
+   !! their opening; fext_new gets the forces that hold them.
+   subroutine attempt_with_pretension(an, m, st, dlam, carry, fext_new, first, att, status)
+      type(analysis_t), intent(inout) :: an
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(inout) :: st
+      real(dp), intent(in) :: dlam(:), carry(:)
+      real(dp), intent(inout) :: fext_new(:, :)     !! external forces after the step; + the holding forces
+      logical, intent(in) :: first
+      type(attempt_t), intent(inout) :: att
+      type(status_t), intent(inout) :: status
+      integer, allocatable :: lk(:)
+      real(dp), allocatable :: x(:), r(:), r0(:), jac(:, :), f0(:, :)
+      real(dp) :: h, tol, scale
+      integer :: k, j, it, n, spent
+
+      lk = [integer ::]
+      if (allocated(m%pretensions)) then
+         do k = 1, size(m%pretensions)
+            if (m%pretensions(k)%mode == PRETENSION_LOCK .and. .not. (abs(dlam(m%pretensions(k)%icase)) > 0.0_dp)) &
+               lk = [lk, k]
+         end do
+      end if
+      n = size(lk)
+      if (n == 0) then
+         call attempt_increment(an, m, st, dlam, carry, fext_new, first, att, status)
+         return
+      end if
+      f0 = fext_new
+      allocate (x(n), r(n), r0(n), jac(n, n))
+      scale = max(maxval(abs(fext_new)), an%force_scale, tiny(1.0_dp))
+      h = 1.0e-3_dp*scale
+      ! the opening is kept to round-off of the model's lengths (1e-13 of its size:
+      ! about 1e-10 of a bolt's elongation, below the solution's own accuracy)
+      tol = 1.0e-13_dp*max(maxval(abs(m%coord)), tiny(1.0_dp))
+      spent = 0
+      ! the first guess: the holding forces of the sections' last locked increments (equal load
+      ! steps need equal holding forces), then chord updates with the last Jacobian; probes for a
+      ! new Jacobian at the first lock and when the old one does not converge in two updates
+      x = an%pret%x_last(lk)
+      call try(x, r)
+      if (.not. status%ok() .or. done(r)) return
+      if (an%pret%have_jac) then
+         jac = an%pret%jac(lk, lk)
+         do it = 1, 2
+            x = x - solve_small(jac, r)
+            call try(x, r)
+            if (.not. status%ok() .or. done(r)) return
+         end do
+      end if
+      do j = 1, n
+         r0 = r
+         x(j) = x(j) + h
+         call try(x, r)
+         if (.not. status%ok()) return
+         jac(:, j) = (r - r0)/h
+         x(j) = x(j) - h
+         r = r0
+      end do
+      an%pret%jac(lk, lk) = jac
+      an%pret%have_jac = .true.
+      do it = 1, MAX_LOCK_ITER
+         x = x - solve_small(jac, r)
+         call try(x, r)
+         if (.not. status%ok() .or. done(r)) return
+      end do
+      call status%set(STAT_NO_CONVERGENCE, 'the locked pretension section(s) did not keep their opening: '// &
+                      'it changed by '//rtoa(maxval(abs(r)))//' after '//itoa(MAX_LOCK_ITER)//' chord updates')
+   contains
+      !> One attempt with the extra forces xx on the locked reference nodes.
+      subroutine try(xx, rr)
+         real(dp), intent(in) :: xx(:)
+         real(dp), intent(out) :: rr(:)
+         real(dp), allocatable :: cm(:)
+         integer :: q, ieq
+         allocate (cm(size(carry)))
+         cm = carry
+         fext_new = f0
+         do q = 1, n
+            associate (p => m%pretensions(lk(q)))
+               ieq = an%map%id(p%axis, p%ref)
+               cm(ieq) = cm(ieq) + xx(q)
+               fext_new(p%axis, p%ref) = fext_new(p%axis, p%ref) + xx(q)
+            end associate
+         end do
+         call attempt_increment(an, m, st, dlam, cm, fext_new, first, att, status)
+         ! the step's solutions are those of all its attempts
+         spent = spent + att%solutions
+         att%solutions = spent
+         an%pret%x_last(lk) = xx
+         rr = 0.0_dp
+         if (.not. status%ok()) return
+         do q = 1, n
+            rr(q) = section_shortening(m%pretensions(lk(q)), an%pret%sections(lk(q))%w, att%du)
+         end do
+      end subroutine try
+      logical function done(rr)
+         real(dp), intent(in) :: rr(:)
+         done = maxval(abs(rr)) <= tol
+      end function done
+   end subroutine attempt_with_pretension
+
+   !> x with a x = b for a small dense a (Gaussian elimination, partial pivoting).
+   pure function solve_small(a, b) result(x)
+      real(dp), intent(in) :: a(:, :), b(:)
+      real(dp) :: x(size(b)), w(size(b), size(b) + 1), t(size(b) + 1)
+      integer :: i, k, p, n
+      n = size(b)
+      w(:, 1:n) = a
+      w(:, n + 1) = b
+      do k = 1, n
+         p = k - 1 + maxloc(abs(w(k:n, k)), 1)
+         t = w(k, :)
+         w(k, :) = w(p, :)
+         w(p, :) = t
+         if (.not. (abs(w(k, k)) > 0.0_dp)) then
+            x = 0.0_dp
+            return
+         end if
+         do i = k + 1, n
+            w(i, :) = w(i, :) - w(i, k)/w(k, k)*w(k, :)
+         end do
+      end do
+      do i = n, 1, -1
+         x(i) = (w(i, n + 1) - sum(w(i, i + 1:n)*x(i + 1:n)))/w(i, i)
+      end do
+   end function solve_small
+end module pretension_control

@@ -1,0 +1,20 @@
+// Block 4 x 2 under a rigid flat punch (the deck's reference node)
+lc = 1.0;
+Point(1) = {0, 0, 0, lc};
+Point(2) = {4, 0, 0, lc};
+Point(3) = {4, 2, 0, lc};
+Point(4) = {0, 2, 0, lc};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Transfinite Surface{1};
+Transfinite Curve{1, 3} = 5;
+Transfinite Curve{2, 4} = 3;
+Recombine Surface{1};
+Physical Surface("block") = {1};
+Physical Curve("bottom") = {1};
+Physical Curve("top") = {3};
+Physical Curve("left") = {4};
