@@ -8,7 +8,8 @@
 !! larger diagonal of K_AB at the node's and its copy's axial equations: stiff enough
 !! that the section opens uniformly to 1/PENALTY of its elements' own
 !! compliance, mild enough for the round-off of the factorization (the
-!! equations lose about log10(PENALTY) digits).  Whatever kp, the
+!! equations lose about log10(PENALTY) digits: with 1e4 the example joint's
+!! skyline and UMFPACK solutions differed by 2.7e-10, with 1e3 by 3.5e-11).  Whatever kp, the
 !! reference node's equilibrium makes the springs carry exactly the force on
 !! it, so the force across the section is the applied one to the accuracy
 !! of the solution.
@@ -27,7 +28,7 @@ module pretension_assembly
    public :: pretension_run_t, assemble_pretension, pretension_nodal_forces, section_forces, section_shortening, &
              PENALTY
 
-   real(dp), parameter :: PENALTY = 1.0e4_dp
+   real(dp), parameter :: PENALTY = 1.0e3_dp
 
    !> What the analysis keeps of the sections.
    type :: section_springs_t
