@@ -187,8 +187,9 @@ contains
          do i = 1, ni
             tab%secant_stiffness(i, ic) = 0.0_dp
             tab%loss_factor(i, ic) = 0.0_dp
-            if (tab%slip_amplitude(i, ic) > 0.0_dp) &
+            if (tab%slip_amplitude(i, ic) > 0.0_dp) then
                tab%secant_stiffness(i, ic) = tab%force_amplitude(i, ic)/tab%slip_amplitude(i, ic)
+            end if
             u = 0.5_dp*tab%force_amplitude(i, ic)*tab%slip_amplitude(i, ic)
             if (u > 0.0_dp) tab%loss_factor(i, ic) = tab%energy(i, ic)/(2.0_dp*acos(-1.0_dp)*u)
          end do

@@ -278,8 +278,9 @@ contains
       if (an%has_contact) maxit = an%maxrep
       do iter = 1, maxit
          ! half the solutions spent: the modes' own stiffnesses for the rest (no regularising springs)
-         if (an%has_contact .and. iter == maxit/2 + 1 .and. .not. st%regularise_slip) &
+         if (an%has_contact .and. iter == maxit/2 + 1 .and. .not. st%regularise_slip) then
             call drop_regularisation(m%contact, st, need_matrix)
+         end if
          if (need_matrix) then
             call set_system(an, m, st, status)
             if (.not. status%ok()) return

@@ -158,8 +158,9 @@ contains
       out%quiet = opts%quiet
 
       call set_up(m, solver_name, plan, an, numbering, status)
-      if (plan%solver_choice == CHOICE_AUTOMATIC) &
+      if (plan%solver_choice == CHOICE_AUTOMATIC) then
          numbering%solver_choice = solver_name//', chosen automatically ('//plan%solver_reason//')'
+      end if
       if (status%ok()) call start_run(m, plan, an, res, status)
       if (status%ok()) then
          call open_outputs(m, numbering, res, out, status)
@@ -420,8 +421,9 @@ contains
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
             if (.not. status%ok()) exit deck
             cuts = 0
-            if (m%autoinc .and. att%solutions <= m%autoinc_easy .and. .not. res%contact%chatter) &
+            if (m%autoinc .and. att%solutions <= m%autoinc_easy .and. .not. res%contact%chatter) then
                step = min(1.0_dp, 2.0_dp*step)
+            end if
          end do
       end do deck
       call res%trim_history()
@@ -515,10 +517,12 @@ contains
       if (srec%full .and. status%ok()) call estimate_error(m, res%body_fields_t, res%fields, status)
 
       if (srec%written) call out%rf%write_increment(srec, res%body_fields_t, status, res%fields)
-      if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) &
+      if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) then
          call list_step(out%lu, m, srec, res%body_fields_t, res%fields, out%lis_path, status, out%lis_level /= 'FULL')
-      if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) &
+      end if
+      if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) then
          call list_pretension_step(out%lu, m, srec)
+      end if
       if (allocated(srec%pretension_force)) out%pret_last = srec
       if (.not. status%ok()) return
       res%completed = srec%step

@@ -49,8 +49,9 @@ contains
       lk = [integer ::]
       if (allocated(m%pretensions)) then
          do k = 1, size(m%pretensions)
-            if (m%pretensions(k)%mode == PRETENSION_LOCK .and. .not. (abs(dlam(m%pretensions(k)%icase)) > 0.0_dp)) &
+            if (m%pretensions(k)%mode == PRETENSION_LOCK .and. .not. (abs(dlam(m%pretensions(k)%icase)) > 0.0_dp)) then
                lk = [lk, k]
+            end if
          end do
       end if
       n = size(lk)

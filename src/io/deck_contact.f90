@@ -201,8 +201,9 @@ contains
       call d%get_word(ic, 1, 10, 'CONTACT', 'KEYWORD', key, ok)
       cur%mode = DATA_NONE
       ! cards of an interface before the first INTERFACE card open interface 1
-      if (key == 'INTERFACE' .or. (cur%nif == 0 .and. any(key == iface_cards))) &
+      if (key == 'INTERFACE' .or. (cur%nif == 0 .and. any(key == iface_cards))) then
          call new_interface(cs, cur, d%cards(ic)%line)
+      end if
       nif = cur%nif
       select case (key)
       case ('INTERFACE')

@@ -150,8 +150,9 @@ contains
       logical function required(k)
          integer, intent(in) :: k
          required = block_required(k)
-         if (seen(block_index('MESH')) .and. (block_order(k) == 'ELEMENTS' .or. block_order(k) == 'NODES')) &
+         if (seen(block_index('MESH')) .and. (block_order(k) == 'ELEMENTS' .or. block_order(k) == 'NODES')) then
             required = .false.
+         end if
       end function required
    end subroutine read_deck
 
@@ -415,9 +416,10 @@ contains
                                                     'or 1-4 Gauss points per direction, found '//itoa(m%ngaus))
          if (m%nnode == 3 .and. all(m%ngaus /= [0, 1, 3])) call bad(31, 'NGAUS (columns 31-35) for triangles '// &
                                                                     'expected 0, 1 or 3 points, found '//itoa(m%ngaus))
-         if (all(w /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'MUMPS', 'DENSE', 'AUTO'])) &
+         if (all(w /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'MUMPS', 'DENSE', 'AUTO'])) then
             call bad(36, 'SOLVER (columns 36-45) expected SKYLINE, UMFPACK, MUMPS, DENSE, AUTO or blank (AUTO), '// &
                      'found "'//w//'"')
+         end if
       end if
       m%solver_name = w
       ctl%ok = ok

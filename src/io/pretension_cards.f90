@@ -152,9 +152,10 @@ contains
          end if
          p%nodes = [p%nodes, node]
       end do
-      if (len_trim(d%field_text(ic, 81, 100000)) > 0) &
+      if (len_trim(d%field_text(ic, 81, 100000)) > 0) then
          call d%error_at(ic, 81, 'E-EXTRA', 'LOADS/PRETENSION: expected at most 16 node numbers (columns 1-80), '// &
                          'found more: "'//shown(trim(adjustl(d%field_text(ic, 81, 100000))))//'"')
+      end if
    end subroutine read_pretension_nodes
 
    !> The sections read: a SECTION without nodes is reported at its card;

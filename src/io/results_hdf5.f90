@@ -111,7 +111,7 @@ module results_hdf5
       procedure :: write_cycles => results_write_cycles
    end type results_file_t
 
-   logical, save :: library_open = .false.
+   logical :: library_open = .false.
 
    !> Size of the reserve file: room for what is written after a failure (the
    !! status, HDF5's last flush and close, the listing's closing lines).
@@ -421,8 +421,9 @@ contains
          ! the XDMF file is rewritten whole: after each of the first XDMF_EVERY_UNTIL
          ! increments, then when the count has grown by an eighth (linear time in
          ! all), and at the end of the run (set_status)
-         if (this%ncompleted <= XDMF_EVERY_UNTIL .or. this%ncompleted - this%xdmf_done >= this%xdmf_done/8) &
+         if (this%ncompleted <= XDMF_EVERY_UNTIL .or. this%ncompleted - this%xdmf_done >= this%xdmf_done/8) then
             call update_xdmf(this, status)
+         end if
       end if
    end subroutine close_increment
 
@@ -536,7 +537,7 @@ contains
       this%opened = .false.
       if (this%discard) then
          ! not even the reserve could be written: no result file
-         open (newunit=u, file=this%path, status='old', iostat=e)
+         open (newunit=u, file=this%path, status='old', action='readwrite', iostat=e)
          if (e == 0) close (u, status='delete', iostat=e)
          if (err < 0) call skip_exit_handlers()
          return
@@ -608,8 +609,9 @@ contains
       associate (p => info%plan)
          call attr_string(this%fid, 'solver', solver_name(p%solver), err)
          call attr_string(this%fid, 'solver_choice', choice_name(p%solver_choice), err)
-         if (p%solver_choice == CHOICE_AUTOMATIC .and. allocated(p%solver_reason)) &
+         if (p%solver_choice == CHOICE_AUTOMATIC .and. allocated(p%solver_reason)) then
             call attr_string(this%fid, 'solver_reason', p%solver_reason, err)
+         end if
          call attr_string(this%fid, 'contact_system', system_name(p%contact_system), err)
          call attr_string(this%fid, 'ordering', ordering_name(p%ordering), err)
          call attr_string(this%fid, 'scheme', scheme_name(p%scheme), err)
@@ -860,7 +862,7 @@ contains
       integer, intent(in) :: v
       integer, intent(inout) :: err
       integer(hid_t) :: sid, aid
-      integer(hsize_t) :: dims(1) = [1]
+      integer(hsize_t), parameter :: dims(1) = [1]
       integer :: e
       call h5screate_f(H5S_SCALAR_F, sid, e)
       call keep(e, err)
@@ -930,7 +932,7 @@ contains
       character(len=*), intent(in) :: v
       integer, intent(inout) :: err
       integer(hid_t) :: sid, aid, tid
-      integer(hsize_t) :: dims(1) = [1]
+      integer(hsize_t), parameter :: dims(1) = [1]
       integer :: e
       call h5tcopy_f(H5T_FORTRAN_S1, tid, e)
       call keep(e, err)
