@@ -190,7 +190,7 @@ contains
             return
          end if
       end do
-      xnames = [xnames, name]
+      xnames = [character(len=20) :: xnames, name]
       xlines = [xlines, ic]
       xy = reshape([xy, x, y], [2, size(xlines)])
    end subroutine read_extra_node
