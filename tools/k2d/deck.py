@@ -16,7 +16,7 @@ import math
 __all__ = ["BLOCKS", "SOLVERS", "keyword", "f10", "fine_then_graded", "graded", "Deck", "circle_y"]
 
 FMT_I = "%5d"
-# the deck's blocks, in their order (src/io/deck_reader.f90, docs/deck-format.md)
+# the deck's blocks, in their order (src/io/deck_blocks.f90, docs/deck-format.md)
 BLOCKS = ("TITLE", "CONTROL", "OPTIONS", "MESH", "ELEMENTS", "NODES", "RESTRAINTS", "TIES", "MATERIALS",
           "LOADS", "CONTACT", "INCREMENTS", "END")
 # CONTROL's SOLVER field (columns 36-45; blank: AUTO) and the command line's -s, in lower case there
