@@ -64,8 +64,8 @@ contains
       type(deck_t), intent(inout) :: d
       character(len=*), intent(in) :: card      !! card name
       character(len=*), intent(in) :: expected  !! what its first field holds
-      logical, intent(in), &
-            optional :: allow_group  !! GROUP cards are data cards here (see group_cards)
+      logical, intent(in), optional :: allow_group  !! GROUP cards are data cards here
+      !! (see group_cards)
       ic = 0
       do while (.not. d%at_end())
          if (is_block_card(d, d%peek())) return
@@ -77,9 +77,8 @@ contains
             ! an unknown keyword: report it once and skip its cards
             call d%error_at(ic, 1, 'E-BLOCK', card//': expected '//expected// &
                             ' or a block keyword (TITLE, CONTROL, OPTIONS, MESH, ELEMENTS, '// &
-                            'NODES, RESTRAINTS, '// &
-                            'TIES, MATERIALS, LOADS, CONTACT, INCREMENTS, END), found "'// &
-                            shown(trim(d%cards(ic)%text))//'"')
+                            'NODES, RESTRAINTS, TIES, MATERIALS, LOADS, CONTACT, INCREMENTS, '// &
+                            'END), found "'//shown(trim(d%cards(ic)%text))//'"')
             call skip_to_block(d)
             ic = 0
             return

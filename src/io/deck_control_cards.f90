@@ -37,25 +37,21 @@ contains
       type(model_t), intent(inout) :: m
       integer :: ic
       if (d%at_end()) then
-         call d%error_at(ickw, 1, 'E-TITLE', &
-                         'TITLE: expected a title card after the keyword, found the end of the '// &
-                         'file')
+         call d%error_at(ickw, 1, 'E-TITLE', 'TITLE: expected a title card after the keyword, '// &
+                         'found the end of the file')
          return
       end if
       ic = d%peek()
       if (is_block_card(d, ic)) then
-         call d%error_at(ic, 1, 'E-TITLE', &
-                         'TITLE: expected a title card (one line of text), found the block '// &
-                         'keyword '// &
-                         d%keyword(ic))
+         call d%error_at(ic, 1, 'E-TITLE', 'TITLE: expected a title card (one line of text), '// &
+                         'found the block keyword '//d%keyword(ic))
          return
       end if
       ic = d%next()
       m%title = trim(adjustl(d%cards(ic)%text))
       if (len(m%title) > MAX_TITLE) then
          call d%error_at(ic, MAX_TITLE + 1, 'E-TITLE', 'TITLE: expected a title of at most '// &
-                         itoa(MAX_TITLE)// &
-                         ' characters, found '//itoa(len(m%title)))
+                         itoa(MAX_TITLE)//' characters, found '//itoa(len(m%title)))
          m%title = m%title(1:MAX_TITLE)
       end if
       call skip_extra(d, 'TITLE')
@@ -92,52 +88,31 @@ contains
       if (ok) then
          if (ctl%counts_from_mesh) then
             ! NPOIN = NELEM = 0: the mesh comes from a MESH block; NNODE 0 = any element of the file
-            if (all(m%nnode /= [0, 3, 4, 8, 9])) call bad(21, &
-                                                          'NNODE (columns 21-25) expected 0 or '// &
-                                                          'blank (any '// &
-                                                          'element of the mesh file), 3, 4, 8 '// &
-                                                          'or 9, found '//itoa(m%nnode))
+            if (all(m%nnode /= [0, 3, 4, 8, 9])) call bad(21, 'NNODE (columns 21-25) expected '// &
+                  '0 or blank (any element of the mesh file), 3, 4, 8 or 9, found '// &
+                  itoa(m%nnode))
          else
-            if (m%npoin < 1) call bad(1, &
-                                      'NPOIN (columns 1-5) expected a positive number of '// &
-                                      'nodes, found '// &
-                                      itoa(m%npoin))
-            if (m%nelem < 1) call bad(6, &
-                                      'NELEM (columns 6-10) expected a positive number of '// &
-                                      'elements, found '// &
-                                      itoa(m%nelem))
-            if (all(m%nnode /= [3, 4, 8, 9])) call bad(21, &
-                                                       'NNODE (columns 21-25) expected 3, 4, 8 '// &
-                                                       'or 9 nodes '// &
-                                                       'per element, found '//itoa(m%nnode))
+            if (m%npoin < 1) call bad(1, 'NPOIN (columns 1-5) expected a positive number of '// &
+                                      'nodes, found '//itoa(m%npoin))
+            if (m%nelem < 1) call bad(6, 'NELEM (columns 6-10) expected a positive number of '// &
+                                      'elements, found '//itoa(m%nelem))
+            if (all(m%nnode /= [3, 4, 8, 9])) call bad(21, 'NNODE (columns 21-25) expected 3, '// &
+                  '4, 8 or 9 nodes per element, found '//itoa(m%nnode))
          end if
-         if (ctl%nvfix < 0) call bad(11, &
-                                     'NVFIX (columns 11-15) expected a number of restraint '// &
-                                     'cards >= 0, found '// &
-                                     itoa(ctl%nvfix))
-         if (m%ntype < 1 .or. m%ntype > 3) call bad(16, &
-                                                    'NTYPE (columns 16-20) expected 1 (plane '// &
-                                                    'stress), '// &
-                                                    '2 (plane strain) or 3 (axisymmetric), '// &
-                                                    'found '//itoa(m%ntype))
-         if (m%nmats < 1) call bad(26, &
-                                   'NMATS (columns 26-30) expected a positive number of '// &
-                                   'materials, found '// &
-                                   itoa(m%nmats))
-         if (m%ngaus < 0 .or. m%ngaus > 4) call bad(31, &
-                                                    'NGAUS (columns 31-35) expected 0 (default '// &
-                                                    'rule) '// &
-                                                    'or 1-4 Gauss points per direction, found '// &
-                                                    itoa(m%ngaus))
+         if (ctl%nvfix < 0) call bad(11, 'NVFIX (columns 11-15) expected a number of restraint '// &
+                                     'cards >= 0, found '//itoa(ctl%nvfix))
+         if (m%ntype < 1 .or. m%ntype > 3) call bad(16, 'NTYPE (columns 16-20) expected 1 '// &
+               '(plane stress), 2 (plane strain) or 3 (axisymmetric), found '//itoa(m%ntype))
+         if (m%nmats < 1) call bad(26, 'NMATS (columns 26-30) expected a positive number of '// &
+                                   'materials, found '//itoa(m%nmats))
+         if (m%ngaus < 0 .or. m%ngaus > 4) call bad(31, 'NGAUS (columns 31-35) expected 0 '// &
+               '(default rule) or 1-4 Gauss points per direction, found '//itoa(m%ngaus))
          if (m%nnode == 3 .and. all(m%ngaus /= [0, 1, 3])) call bad(31, &
-               'NGAUS (columns 31-35) for triangles '// &
-                                                                    'expected 0, 1 or 3 '// &
-                                                                    'points, found '//itoa(m%ngaus))
+               'NGAUS (columns 31-35) for triangles expected 0, 1 or 3 points, found '// &
+               itoa(m%ngaus))
          if (all(w /= [character(len=7) :: 'SKYLINE', 'UMFPACK', 'MUMPS', 'DENSE', 'AUTO'])) then
-            call bad(36, &
-                     'SOLVER (columns 36-45) expected SKYLINE, UMFPACK, MUMPS, DENSE, AUTO or '// &
-                     'blank (AUTO), '// &
-                     'found "'//w//'"')
+            call bad(36, 'SOLVER (columns 36-45) expected SKYLINE, UMFPACK, MUMPS, DENSE, AUTO '// &
+                     'or blank (AUTO), found "'//w//'"')
          end if
       end if
       m%solver_name = w
@@ -174,18 +149,16 @@ contains
          case ('LISTING')
             call d%get_word(ic, 11, 20, 'OPTIONS', 'LISTING', val, ok)
             if (ok .and. all(val /= [character(len=5) :: 'FULL', 'SHORT', 'NONE'])) then
-               call d%error_at(ic, 11, 'E-OPTION', &
-                               'OPTIONS: LISTING (columns 11-20) expected FULL, SHORT or NONE, '// &
-                               'found "'//val//'"')
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: LISTING (columns 11-20) expected '// &
+                               'FULL, SHORT or NONE, found "'//val//'"')
             else if (ok) then
                m%listing_level = val
             end if
          case ('RENUMBER')
             call d%get_word(ic, 11, 20, 'OPTIONS', 'RENUMBER', val, ok)
             if (ok .and. all(val /= [character(len=4) :: 'RCM', 'NONE'])) then
-               call d%error_at(ic, 11, 'E-OPTION', &
-                               'OPTIONS: RENUMBER (columns 11-20) expected RCM or NONE, '// &
-                               'found "'//val//'"')
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: RENUMBER (columns 11-20) expected '// &
+                               'RCM or NONE, found "'//val//'"')
             else if (ok) then
                m%renumber = val
             end if
@@ -194,18 +167,15 @@ contains
             call d%get_real(ic, 21, 30, 'OPTIONS', 'MINFRAC', x, ok, default=1.0_dp/128.0_dp)
             call d%get_int(ic, 31, 40, 'OPTIONS', 'NEASY', iv, ok, default=4)
             if (ok .and. all(val /= [character(len=3) :: 'ON', 'OFF'])) then
-               call d%error_at(ic, 11, 'E-OPTION', &
-                               'OPTIONS: AUTOINC (columns 11-20) expected ON or OFF, '// &
-                               'found "'//val//'"')
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: AUTOINC (columns 11-20) expected '// &
+                               'ON or OFF, found "'//val//'"')
             else if (ok .and. .not. (x > 0.0_dp .and. x <= 1.0_dp)) then
-               call d%error_at(ic, 21, 'E-OPTION', &
-                               'OPTIONS: AUTOINC MINFRAC (columns 21-30) expected the '// &
-                               'smallest step as a fraction of a deck increment, in (0, 1], '// &
-                               'found '//rtoa(x))
+               call d%error_at(ic, 21, 'E-OPTION', 'OPTIONS: AUTOINC MINFRAC (columns 21-30) '// &
+                               'expected the smallest step as a fraction of a deck increment, '// &
+                               'in (0, 1], found '//rtoa(x))
             else if (ok .and. iv < 1) then
-               call d%error_at(ic, 31, 'E-OPTION', &
-                               'OPTIONS: AUTOINC NEASY (columns 31-40) expected a number '// &
-                               'of solutions >= 1, found '//itoa(iv))
+               call d%error_at(ic, 31, 'E-OPTION', 'OPTIONS: AUTOINC NEASY (columns 31-40) '// &
+                               'expected a number of solutions >= 1, found '//itoa(iv))
             else if (ok) then
                m%autoinc = val == 'ON'
                m%autoinc_min = x
@@ -214,25 +184,24 @@ contains
          case ('RESULTS')
             call d%get_int(ic, 11, 20, 'OPTIONS', 'RESULTS', iv, ok)
             if (ok .and. iv < 1) then
-               call d%error_at(ic, 11, 'E-OPTION', &
-                               'OPTIONS: RESULTS (columns 11-20) expected the step interval '// &
-                               'of the result file, an integer >= 1, found '//itoa(iv))
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: RESULTS (columns 11-20) expected '// &
+                               'the step interval of the result file, an integer >= 1, found '// &
+                               itoa(iv))
             else if (ok) then
                m%results_every = iv
             end if
          case ('CONDENSE')
             call d%get_word(ic, 11, 20, 'OPTIONS', 'CONDENSE', val, ok)
             if (ok .and. all(val /= [character(len=4) :: 'AUTO', 'ON', 'OFF'])) then
-               call d%error_at(ic, 11, 'E-OPTION', &
-                               'OPTIONS: CONDENSE (columns 11-20) expected AUTO, ON or OFF, '// &
-                               'found "'//val//'"')
+               call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: CONDENSE (columns 11-20) expected '// &
+                               'AUTO, ON or OFF, found "'//val//'"')
             else if (ok) then
                m%condense = val
             end if
          case default
             call d%error_at(ic, 1, 'E-OPTION', 'OPTIONS: unknown option "'//key// &
-                            '" (columns 1-10); '// &
-                            'known: LISTING, RESULTS, RENUMBER, AUTOINC, CONDENSE')
+                            '" (columns 1-10); known: LISTING, RESULTS, RENUMBER, AUTOINC, '// &
+                            'CONDENSE')
          end select
       end do
    end subroutine read_options

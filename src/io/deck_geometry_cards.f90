@@ -54,9 +54,8 @@ contains
          end if
          if (.not. ok) cycle
          if (ielem < 1 .or. ielem > m%nelem) then
-            call d%error_at(ic, 1, 'E-RANGE', &
-                            'ELEMENTS: element number (columns 1-5) expected 1..'// &
-                            itoa(m%nelem)//' (NELEM), found '//itoa(ielem))
+            call d%error_at(ic, 1, 'E-RANGE', 'ELEMENTS: element number (columns 1-5) expected '// &
+                            '1..'//itoa(m%nelem)//' (NELEM), found '//itoa(ielem))
             cycle
          end if
          if (m%elem_line(ielem) /= 0) then
@@ -65,18 +64,16 @@ contains
             cycle
          end if
          if (imat < 1 .or. imat > m%nmats) then
-            call d%error_at(ic, 6, 'E-RANGE', &
-                            'ELEMENTS: material number MATNO (columns 6-10) expected 1..'// &
-                            itoa(m%nmats)//' (NMATS), found '//itoa(imat))
+            call d%error_at(ic, 6, 'E-RANGE', 'ELEMENTS: material number MATNO (columns 6-10) '// &
+                            'expected 1..'//itoa(m%nmats)//' (NMATS), found '//itoa(imat))
             ok = .false.
          end if
          do k = 1, m%nnode
             c1 = 11 + 5*(k - 1)
             if (node(k) < 1 .or. node(k) > m%npoin) then
                call d%error_at(ic, c1, 'E-RANGE', 'ELEMENTS: NODE'//itoa(k)//' (columns '// &
-                               itoa(c1)//'-'// &
-                               itoa(c1 + 4)//') expected a node number 1..'//itoa(m%npoin)// &
-                               ' (NPOIN), found '//itoa(node(k)))
+                               itoa(c1)//'-'//itoa(c1 + 4)//') expected a node number 1..'// &
+                               itoa(m%npoin)//' (NPOIN), found '//itoa(node(k)))
                ok = .false.
             end if
             do j = 1, k - 1
@@ -125,9 +122,9 @@ contains
          call d%check_coordinate(ic, 6, 'NODES', 'X', x, ok)
          call d%check_coordinate(ic, 16, 'NODES', 'Y', y, ok)
          if (len_trim(d%field_text(ic, 26, 10000)) > 0) then
-            call d%error_at(ic, 26, 'E-EXTRA', &
-                            'NODES: expected IPOIN, X, Y in columns 1-25, found more: "'// &
-                            shown(trim(adjustl(d%field_text(ic, 26, 10000))))//'"')
+            call d%error_at(ic, 26, 'E-EXTRA', 'NODES: expected IPOIN, X, Y in columns 1-25, '// &
+                            'found more: "'//shown(trim(adjustl(d%field_text(ic, 26, 10000))))// &
+                            '"')
             ok = .false.
          end if
          if (.not. ok) cycle
@@ -142,10 +139,8 @@ contains
             cycle
          end if
          if (m%ntype == NTYPE_AXISYMMETRIC .and. x < 0.0_dp) then
-            call d%error_at(ic, 6, 'E-RANGE', &
-                            'NODES: axisymmetric analysis needs radius X >= 0 (columns 6-15), '// &
-                            'found '// &
-                            rtoa(x))
+            call d%error_at(ic, 6, 'E-RANGE', 'NODES: axisymmetric analysis needs radius X >= '// &
+                            '0 (columns 6-15), found '//rtoa(x))
          end if
          m%node_line(ipoin) = d%cards(ic)%line
          m%coord(:, ipoin) = [x, y]
@@ -201,22 +196,18 @@ contains
          list(n) = restraint_t()
          if (.not. ok) cycle
          if (node < 1 .or. node > m%npoin) then
-            call d%error_at(ic, 1, 'E-RANGE', &
-                            'RESTRAINTS: NODE (columns 1-5) expected a node number 1..'// &
-                            itoa(m%npoin)//', found '//itoa(node))
+            call d%error_at(ic, 1, 'E-RANGE', 'RESTRAINTS: NODE (columns 1-5) expected a node '// &
+                            'number 1..'//itoa(m%npoin)//', found '//itoa(node))
             cycle
          end if
          if (all(code /= [1, 10, 11])) then
-            call d%error_at(ic, 6, 'E-CODE', &
-                            'RESTRAINTS: CODE (columns 6-10) expected 10 (x fixed), '// &
-                            '01 (y fixed) or 11 (both), found '//itoa(code))
+            call d%error_at(ic, 6, 'E-CODE', 'RESTRAINTS: CODE (columns 6-10) expected 10 (x '// &
+                            'fixed), 01 (y fixed) or 11 (both), found '//itoa(code))
             cycle
          end if
          if (icase < 1 .or. icase > MAX_CASE) then
-            call d%error_at(ic, 31, 'E-RANGE', &
-                            'RESTRAINTS: CASE (columns 31-35) expected a load case '// &
-                         '1..'//itoa(MAX_CASE)//', found '// &
-                            itoa(icase))
+            call d%error_at(ic, 31, 'E-RANGE', 'RESTRAINTS: CASE (columns 31-35) expected a '// &
+                            'load case 1..'//itoa(MAX_CASE)//', found '//itoa(icase))
             cycle
          end if
          if (first_line(node) /= 0) then
@@ -230,11 +221,11 @@ contains
          list(n)%fixed = [code >= 10, mod(code, 10) == 1]
          list(n)%value = [ux, uy]
          if (.not. list(n)%fixed(1) .and. abs(ux) > 0.0_dp) call d%error_at(ic, 11, 'E-CODE', &
-                             'RESTRAINTS: UX = '//rtoa(ux)//' is prescribed but CODE '// &
-                             itoa(code)//' leaves x free')
+               'RESTRAINTS: UX = '//rtoa(ux)//' is prescribed but CODE '//itoa(code)// &
+               ' leaves x free')
          if (.not. list(n)%fixed(2) .and. abs(uy) > 0.0_dp) call d%error_at(ic, 21, 'E-CODE', &
-                             'RESTRAINTS: UY = '//rtoa(uy)//' is prescribed but CODE '// &
-                             itoa(code)//' leaves y free')
+               'RESTRAINTS: UY = '//rtoa(uy)//' is prescribed but CODE '//itoa(code)// &
+               ' leaves y free')
          list(n)%icase = icase
          list(n)%line = d%cards(ic)%line
       end do

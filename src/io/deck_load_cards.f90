@@ -58,10 +58,9 @@ contains
          if (d%is_keyword_card(ic)) then
             sub = d%keyword(ic)
             if (all(sub /= [character(len=10) :: 'POINT', 'EDGE', 'BODY', 'PRETENSION'])) then
-               call d%error_at(ic, 1, 'E-CARD', &
-                               'LOADS: expected a sub-block keyword POINT, EDGE, BODY or '// &
-                               'PRETENSION, '// &
-                               'or a load card, found "'//shown(trim(d%cards(ic)%text))//'"')
+               call d%error_at(ic, 1, 'E-CARD', 'LOADS: expected a sub-block keyword POINT, '// &
+                               'EDGE, BODY or PRETENSION, or a load card, found "'// &
+                               shown(trim(d%cards(ic)%text))//'"')
                sub = 'BAD'
             end if
             cycle
@@ -74,9 +73,9 @@ contains
          case ('EDGE')
             if (.not. allocated(m%nnode_e)) then
                ! the card names an element, and no element was read
-               call d%error_at(ic, 1, 'E-CARD', &
-                               'LOADS/EDGE: an edge load refers to element numbers, but no '// &
-                               'elements were read (the ELEMENTS block is missing or was rejected)')
+               call d%error_at(ic, 1, 'E-CARD', 'LOADS/EDGE: an edge load refers to element '// &
+                               'numbers, but no elements were read (the ELEMENTS block is '// &
+                               'missing or was rejected)')
                sub = 'BAD'
                cycle
             end if
@@ -85,15 +84,13 @@ contains
             call read_edge_load(d, ic, m, el(nel))
          case ('PRETENSION')
             if (size(pts) == 0) then
-               call d%error_at(ic, 1, 'E-CARD', &
-                               'LOADS/PRETENSION: expected a GROUP or SECTION card, found "'// &
-                               shown(trim(d%cards(ic)%text))//'"')
+               call d%error_at(ic, 1, 'E-CARD', 'LOADS/PRETENSION: expected a GROUP or SECTION '// &
+                               'card, found "'//shown(trim(d%cards(ic)%text))//'"')
                sub = 'BAD'
             else if (pts(size(pts))%group) then
                if (pts(size(pts))%line > 0) call d%error_at(ic, 1, 'E-CARD', &
-                     'LOADS/PRETENSION: node numbers '// &
-                  'follow a SECTION card only (a GROUP takes the nodes of its set), found "'// &
-                  shown(trim(d%cards(ic)%text))//'"')
+                     'LOADS/PRETENSION: node numbers follow a SECTION card only (a GROUP takes '// &
+                     'the nodes of its set), found "'//shown(trim(d%cards(ic)%text))//'"')
             else
                call read_pretension_nodes(d, ic, m, pts(size(pts)))
             end if
@@ -102,9 +99,9 @@ contains
             nbl = nbl + 1
             call read_body_load(d, ic, m, bl(nbl))
          case ('')
-            call d%error_at(ic, 1, 'E-CARD', &
-                            'LOADS: a load card must follow a sub-block keyword '// &
-                            'POINT, EDGE or BODY, found "'//shown(trim(d%cards(ic)%text))//'"')
+            call d%error_at(ic, 1, 'E-CARD', 'LOADS: a load card must follow a sub-block '// &
+                            'keyword POINT, EDGE or BODY, found "'// &
+                            shown(trim(d%cards(ic)%text))//'"')
             sub = 'BAD'
          case default
             continue   ! cards under a bad sub-block keyword were already reported
@@ -134,16 +131,13 @@ contains
       call d%check_magnitude(ic, 16, 'LOADS/POINT', 'FY', fy, ok)
       if (.not. ok) return
       if (node < 1 .or. node > m%npoin) then
-         call d%error_at(ic, 1, 'E-RANGE', &
-                         'LOADS/POINT: NODE (columns 1-5) expected a node number 1..'// &
-                         itoa(m%npoin)//', found '//itoa(node))
+         call d%error_at(ic, 1, 'E-RANGE', 'LOADS/POINT: NODE (columns 1-5) expected a node '// &
+                         'number 1..'//itoa(m%npoin)//', found '//itoa(node))
          return
       end if
       if (icase < 1 .or. icase > MAX_CASE) then
-         call d%error_at(ic, 26, 'E-RANGE', &
-                         'LOADS/POINT: CASE (columns 26-30) expected a load case '// &
-                         '1..'//itoa(MAX_CASE)//', found '// &
-                         itoa(icase))
+         call d%error_at(ic, 26, 'E-RANGE', 'LOADS/POINT: CASE (columns 26-30) expected a load '// &
+                         'case 1..'//itoa(MAX_CASE)//', found '//itoa(icase))
          return
       end if
       p = point_load_t(node=node, force=[fx, fy], icase=icase, line=d%cards(ic)%line)
@@ -178,9 +172,8 @@ contains
       end do
       if (.not. ok) return
       if (ielem < 1 .or. ielem > m%nelem) then
-         call d%error_at(ic, 1, 'E-RANGE', card// &
-                         ': IELEM (columns 1-5) expected an element number 1..'// &
-                         itoa(m%nelem)//', found '//itoa(ielem))
+         call d%error_at(ic, 1, 'E-RANGE', card//': IELEM (columns 1-5) expected an element '// &
+                         'number 1..'//itoa(m%nelem)//', found '//itoa(ielem))
          return
       end if
       if (icase < 1 .or. icase > MAX_CASE) then
@@ -193,14 +186,14 @@ contains
       nn = merge(3, 2, nd(3) /= 0)
       if (nnode >= 8 .and. nn == 2) then
          call d%error_at(ic, 16, 'E-EDGE', card//': element '//itoa(ielem)// &
-                         ' has quadratic edges: expected '// &
-                         'N1 (corner), N2 (midside), N3 (corner), found only two nodes')
+                         ' has quadratic edges: expected N1 (corner), N2 (midside), N3 '// &
+                         '(corner), found only two nodes')
          return
       end if
       if (nnode < 8 .and. nn == 3) then
          call d%error_at(ic, 16, 'E-EDGE', card//': element '//itoa(ielem)// &
-                         ' has straight 2-node edges: '// &
-                         'expected N1, N2 and a blank N3, found N3 = '//itoa(nd(3)))
+                         ' has straight 2-node edges: expected N1, N2 and a blank N3, found N3 '// &
+                         '= '//itoa(nd(3)))
          return
       end if
       if (any(m%lnods(1:nnode, ielem) == 0)) return   ! element card was bad, already reported
@@ -235,8 +228,7 @@ contains
       if (.not. found) then
          if (nn == 3) then
             call d%error_at(ic, 6, 'E-EDGE', card//': nodes '//itoa(nd(1))//' '//itoa(nd(2))// &
-                            ' '//itoa(nd(3))// &
-                            ' do not form an edge of element '//itoa(ielem)// &
+                            ' '//itoa(nd(3))//' do not form an edge of element '//itoa(ielem)// &
                             ' (expected corner, midside, corner along one side)')
          else
             call d%error_at(ic, 6, 'E-EDGE', card//': nodes '//itoa(nd(1))//' '//itoa(nd(2))// &
@@ -274,16 +266,13 @@ contains
       call d%check_magnitude(ic, 16, 'LOADS/BODY', 'BY', by, ok)
       if (.not. ok) return
       if (imat < 0 .or. imat > m%nmats) then
-         call d%error_at(ic, 1, 'E-RANGE', &
-                         'LOADS/BODY: MATNO (columns 1-5) expected 0 (all) or 1..'// &
-                         itoa(m%nmats)//', found '//itoa(imat))
+         call d%error_at(ic, 1, 'E-RANGE', 'LOADS/BODY: MATNO (columns 1-5) expected 0 (all) '// &
+                         'or 1..'//itoa(m%nmats)//', found '//itoa(imat))
          return
       end if
       if (icase < 1 .or. icase > MAX_CASE) then
-         call d%error_at(ic, 26, 'E-RANGE', &
-                         'LOADS/BODY: CASE (columns 26-30) expected a load case '// &
-                         '1..'//itoa(MAX_CASE)//', found '// &
-                         itoa(icase))
+         call d%error_at(ic, 26, 'E-RANGE', 'LOADS/BODY: CASE (columns 26-30) expected a load '// &
+                         'case 1..'//itoa(MAX_CASE)//', found '//itoa(icase))
          return
       end if
       bl = body_load_t(imat=imat, b=[bx, by], icase=icase, line=d%cards(ic)%line)
@@ -302,7 +291,8 @@ contains
       real(dp) :: val
       logical :: ok
 
-      ncase = max(1, maxval([1, m%fixes%icase, m%point_loads%icase, m%edge_loads%icase, &
+      ncase = max(1, &
+                  maxval([1, m%fixes%icase, m%point_loads%icase, m%edge_loads%icase, &
                   m%body_loads%icase]))
       if (allocated(m%pretensions)) ncase = max(ncase, maxval([1, m%pretensions%icase]))
       m%ncase = ncase
@@ -324,8 +314,8 @@ contains
             ! cannot overflow
             if (ok .and. abs(val) > 0.25_dp*huge(val)) then
                call d%error_at(ic, c1, 'E-RANGE', 'INCREMENTS: LAMBDA'//itoa(k)//' (columns '// &
-                               itoa(c1)//'-'// &
-                               itoa(c1 + 9)//') expected a load factor of magnitude at most '// &
+                               itoa(c1)//'-'//itoa(c1 + 9)// &
+                               ') expected a load factor of magnitude at most '// &
                                rtoa(0.25_dp*huge(val))//', found '//rtoa(val))
                ok = .false.
             end if
@@ -335,10 +325,8 @@ contains
                          ' load factor(s), one per load case used by the deck', ok)
          if (.not. ok) cycle
          if (nstep < 1 .or. nstep > 100000) then
-            call d%error_at(ic, 1, 'E-RANGE', &
-                            'INCREMENTS: NSTEP (columns 1-5) expected 1..100000 increments, '// &
-                            'found '// &
-                            itoa(nstep))
+            call d%error_at(ic, 1, 'E-RANGE', 'INCREMENTS: NSTEP (columns 1-5) expected '// &
+                            '1..100000 increments, found '//itoa(nstep))
             cycle
          end if
          if (nincs + nstep > ubound(lam, 2)) call grow(lam, nincs + nstep)
@@ -349,9 +337,8 @@ contains
          prev = target
       end do
       if (nincs == 0) then
-         call d%error_eof('E-INCREMENTS', &
-                          'INCREMENTS: the block has no increment cards; omit the block '// &
-                          'for a single increment to load factor 1')
+         call d%error_eof('E-INCREMENTS', 'INCREMENTS: the block has no increment cards; omit '// &
+                          'the block for a single increment to load factor 1')
          return
       end if
       m%nincs = nincs

@@ -47,8 +47,7 @@ contains
          if (.not. ok) cycle
          if (imat < 1 .or. imat > m%nmats) then
             call d%error_at(ic, 1, 'E-RANGE', 'MATERIALS: MATNO (columns 1-5) expected 1..'// &
-                            itoa(m%nmats)// &
-                            ' (NMATS), found '//itoa(imat))
+                            itoa(m%nmats)//' (NMATS), found '//itoa(imat))
             cycle
          end if
          if (line_of(imat) /= 0) then
@@ -58,27 +57,26 @@ contains
          end if
          line_of(imat) = d%cards(ic)%line
          if (.not. (e > 0.0_dp)) call d%error_at(ic, 6, 'E-MATERIAL', &
-                                                 'MATERIALS: E (columns 6-15) expected '// &
-                                                 'a positive Young''s modulus, found '//rtoa(e))
+                                                 'MATERIALS: E (columns 6-15) expected a '// &
+                                                 'positive Young''s modulus, found '//rtoa(e))
          if (.not. (nu > -1.0_dp .and. nu < 0.5_dp)) call d%error_at(ic, 16, 'E-MATERIAL', &
-                                  'MATERIALS: NU (columns 16-25) expected Poisson''s ratio in '// &
-                                  '(-1, 0.5), found '//rtoa(nu))
+               'MATERIALS: NU (columns 16-25) expected Poisson''s ratio in (-1, 0.5), found '// &
+               rtoa(nu))
          if (.not. (t > 0.0_dp)) call d%error_at(ic, 26, 'E-MATERIAL', &
-                                                 'MATERIALS: THICK (columns 26-35) expected '// &
-                                                 'a positive thickness, found '//rtoa(t))
-         if (m%ntype == NTYPE_AXISYMMETRIC .and. len_trim(d%field_text(ic, 26, 35)) > 0 &
-             .and. abs(t - 1.0_dp) > 0.0_dp) then
-            call warnings%add('W-THICK', &
-                              'MATERIALS: THICK is ignored in axisymmetric analysis (the ring '// &
-                              'weight 2*pi*r is used)', file=d%file, line=d%cards(ic)%line, col=26)
+                                                 'MATERIALS: THICK (columns 26-35) expected a '// &
+                                                 'positive thickness, found '//rtoa(t))
+         if (m%ntype == NTYPE_AXISYMMETRIC .and. len_trim(d%field_text(ic, 26, 35)) > 0 .and. &
+             abs(t - 1.0_dp) > 0.0_dp) then
+            call warnings%add('W-THICK', 'MATERIALS: THICK is ignored in axisymmetric analysis '// &
+                              '(the ring weight 2*pi*r is used)', file=d%file, &
+                              line=d%cards(ic)%line, col=26)
          end if
          if (e > 0.0_dp .and. nu > -1.0_dp .and. nu < 0.5_dp .and. t > 0.0_dp) then
             if (.not. stiffness_fits(e, nu, t)) call d%error_at(ic, 6, 'E-MATERIAL', &
-                  'MATERIALS: E = '//rtoa(e)// &
-                ', NU = '//rtoa(nu)//' and THICK = '//rtoa(t)//' give elastic constants beyond '// &
-                rtoa(sqrt(huge(1.0_dp)))//' or below '//rtoa(1.0_dp/sqrt(huge(1.0_dp)))// &
-                ' (the analysis multiplies loads by compliances and displacements by '// &
-                'stiffnesses): out of range')
+                  'MATERIALS: E = '//rtoa(e)//', NU = '//rtoa(nu)//' and THICK = '//rtoa(t)// &
+                  ' give elastic constants beyond '//rtoa(sqrt(huge(1.0_dp)))//' or below '// &
+                  rtoa(1.0_dp/sqrt(huge(1.0_dp)))//' (the analysis multiplies loads by '// &
+                  'compliances and displacements by stiffnesses): out of range')
          end if
          m%mats(imat) = material_t(young=e, poiss=nu, thick=t, line=d%cards(ic)%line)
       end do

@@ -71,8 +71,7 @@ contains
       m%renumber = 'AUTO'
       m%condense = 'AUTO'
       allocate (m%fixes(0), m%point_loads(0), m%edge_loads(0), m%body_loads(0), m%mats(0), &
-                m%ties(3, 0), &
-                m%pretensions(0))
+                m%ties(3, 0), m%pretensions(0))
       allocate (m%contact%ifaces(0), m%contact%pairs(0))
       if (.not. loaded) then
          errors = d%errors
@@ -91,9 +90,8 @@ contains
          kw = d%keyword(ic)
          iblk = block_index(kw)
          if (.not. d%is_keyword_card(ic) .or. iblk == 0) then
-            call d%error_at(ic, 1, 'E-BLOCK', 'expected a block keyword ('// &
-                            'TITLE, CONTROL, OPTIONS, MESH, ELEMENTS, NODES, RESTRAINTS, TIES, '// &
-                            'MATERIALS, '// &
+            call d%error_at(ic, 1, 'E-BLOCK', 'expected a block keyword (TITLE, CONTROL, '// &
+                            'OPTIONS, MESH, ELEMENTS, NODES, RESTRAINTS, TIES, MATERIALS, '// &
                             'LOADS, CONTACT, INCREMENTS or END), found "'// &
                             shown(trim(d%cards(ic)%text))//'"')
             call skip_to_block(d)
@@ -106,10 +104,9 @@ contains
          end if
          if (iblk < last) then
             call d%error_at(ic, 1, 'E-ORDER', 'block '//trim(kw)// &
-                            ' is out of order: it must come before '// &
-                            trim(block_order(last))// &
-                            ' (order: TITLE, CONTROL, OPTIONS, MESH, ELEMENTS, '// &
-                            'NODES, RESTRAINTS, TIES, MATERIALS, LOADS, CONTACT, INCREMENTS, END)')
+                            ' is out of order: it must come before '//trim(block_order(last))// &
+                            ' (order: TITLE, CONTROL, OPTIONS, MESH, ELEMENTS, NODES, '// &
+                            'RESTRAINTS, TIES, MATERIALS, LOADS, CONTACT, INCREMENTS, END)')
             call skip_to_block(d)
             cycle
          end if
@@ -147,8 +144,8 @@ contains
       logical function required(k)
          integer, intent(in) :: k
          required = block_required(k)
-         if (seen(block_index('MESH')) .and. (block_order(k) == 'ELEMENTS' &
-             .or. block_order(k) == 'NODES')) then
+         if (seen(block_index('MESH')) .and. (block_order(k) == 'ELEMENTS' .or. &
+             block_order(k) == 'NODES')) then
             required = .false.
          end if
       end function required
@@ -203,9 +200,8 @@ contains
             call skip_to_block(d)
          end if
       case ('CONTACT')
-         if (ctl%ok .and. allocated(m%coord) .and. allocated(m%lnods) .and. allocated(m%mats) &
-             .and. &
-             d%errors%n == 0) then
+         if (ctl%ok .and. allocated(m%coord) .and. allocated(m%lnods) .and. &
+             allocated(m%mats) .and. d%errors%n == 0) then
             call read_contact(d, ic, m, is_block_card)
          else
             call skip_to_block(d)
@@ -236,9 +232,9 @@ contains
       if (.not. ctl%ok) then
          call skip_to_block(d)
       else if (.not. ctl%counts_from_mesh) then
-         call d%error_at(ic, 1, 'E-MESH', &
-                         'MESH: the mesh comes from the .msh file, so NPOIN and NELEM on the '// &
-                         'control card (line '//itoa(ctl%line)//') must be blank or 0')
+         call d%error_at(ic, 1, 'E-MESH', 'MESH: the mesh comes from the .msh file, so NPOIN '// &
+                         'and NELEM on the control card (line '//itoa(ctl%line)// &
+                         ') must be blank or 0')
          call skip_to_block(d)
          ctl%ok = .false.
       else
@@ -255,12 +251,11 @@ contains
       mesh_conflict = .true.
       if (seen(block_index('MESH'))) then
          call d%error_at(ic, 1, 'E-BLOCK', 'block '//d%keyword(ic)// &
-                         ' cannot be given with a MESH block: '// &
-                         'the mesh comes from the .msh file')
+                         ' cannot be given with a MESH block: the mesh comes from the .msh file')
       else if (ctl%counts_from_mesh) then
-         call d%error_at(ic, 1, 'E-CONTROL', &
-                         'CONTROL: NPOIN and NELEM are 0 or blank on the control card (line '// &
-                         itoa(ctl%line)//'): give them, or take the mesh from a MESH block')
+         call d%error_at(ic, 1, 'E-CONTROL', 'CONTROL: NPOIN and NELEM are 0 or blank on the '// &
+                         'control card (line '//itoa(ctl%line)// &
+                         '): give them, or take the mesh from a MESH block')
       else
          mesh_conflict = .false.
       end if
@@ -313,9 +308,9 @@ contains
          end if
       end if
       if (.not. allocated(m%pretensions)) allocate (m%pretensions(0))
-      m%ncase = max(1, maxval([1, m%fixes%icase, m%point_loads%icase, m%edge_loads%icase, &
-                    m%body_loads%icase, &
-                               m%pretensions%icase]))
+      m%ncase = max(1, &
+                    maxval([1, m%fixes%icase, m%point_loads%icase, m%edge_loads%icase, &
+                    m%body_loads%icase, m%pretensions%icase]))
       if (m%nincs == 0) then
          m%nincs = 1
          allocate (m%lambda(m%ncase, 0:1))

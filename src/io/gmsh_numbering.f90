@@ -46,8 +46,8 @@ contains
       do k = 2, n
          if (tags(k) == tags(k - 1)) then
             call errors%add('E-GMSH', 'node tag '//itoa(tags(k))//' appears twice in $Nodes', &
-                            file=msh%path, line=max(msh%node_line(perm(k)), &
-                            msh%node_line(perm(k - 1))))
+                            file=msh%path, &
+                            line=max(msh%node_line(perm(k)), msh%node_line(perm(k - 1))))
             return
          end if
       end do
@@ -78,9 +78,8 @@ contains
       if (allocated(m%lnods)) deallocate (m%lnods)
       if (allocated(m%nnode_e)) deallocate (m%nnode_e)
       if (allocated(m%elem_line)) deallocate (m%elem_line)
-      allocate (m%coord(2, npoin), m%node_tag(npoin), m%node_line(npoin), m%lnods(MAX_NODE, &
-                nelem), &
-                m%nnode_e(nelem), m%elem_line(nelem))
+      allocate (m%coord(2, npoin), m%node_tag(npoin), m%node_line(npoin), &
+                m%lnods(MAX_NODE, nelem), m%nnode_e(nelem), m%elem_line(nelem))
       do k = 1, n
          if (model_of(k) == 0) cycle
          m%coord(:, model_of(k)) = msh%xyz(1:2, perm(k))

@@ -165,8 +165,7 @@ contains
       do k = 1, size(mat_names)
          g = group_by_name(msh, 2, mat_names(k))
          if (g == 0) call errors%add('E-GMSH', 'MESH: MATERIAL names physical surface "'// &
-                                     trim(mat_names(k))// &
-                                     '", which '//msh%path// &
+                                     trim(mat_names(k))//'", which '//msh%path// &
                                      ' does not have (its physical surfaces: '// &
                                      group_list(msh, 2)//')', file=deck_file, line=mat_lines(k), &
                                      col=11)
@@ -217,25 +216,22 @@ contains
          if (nnode_req > 0 .and. nn /= nnode_req) then
             call errors%add('E-GMSH', itoa(nn)//'-node element, but NNODE = '//itoa(nnode_req)// &
                             ' on the control card requires '//itoa(nnode_req)// &
-                            '-node elements only', &
-                            file=msh%path, line=msh%eline(k))
+                            '-node elements only', file=msh%path, line=msh%eline(k))
             exit
          end if
       end do
       surf = surf(1:nsurf)
       ok = nsurf > 0
       if (.not. ok) then
-         call errors%add('E-GMSH', &
-                         'the mesh has no 2-D elements (triangles or quadrilaterals): '// &
-                         'mesh the surfaces (gmsh -2) and put them in physical surfaces', &
-                         file=msh%path)
+         call errors%add('E-GMSH', 'the mesh has no 2-D elements (triangles or '// &
+                         'quadrilaterals): mesh the surfaces (gmsh -2) and put them in '// &
+                         'physical surfaces', file=msh%path)
          return
       end if
       if (nq > 0 .and. nl > 0) then
-         call errors%add('E-GMSH', &
-                         'the mesh mixes linear (3-, 4-node) and quadratic (8-, 9-node) '// &
-                         'elements, '// &
-                         'which do not conform along their common edges', file=msh%path)
+         call errors%add('E-GMSH', 'the mesh mixes linear (3-, 4-node) and quadratic (8-, '// &
+                         '9-node) elements, which do not conform along their common edges', &
+                         file=msh%path)
       end if
    end subroutine surface_elements
 
@@ -258,10 +254,9 @@ contains
          k = surf(ie)
          imat = 0
          if (msh%nphys(k) == 0) then
-            call errors%add('E-GMSH', &
-                            'element of no physical surface: every surface must belong to a '// &
-                            'physical surface named on a MATERIAL card', file=msh%path, &
-                            line=msh%eline(k))
+            call errors%add('E-GMSH', 'element of no physical surface: every surface must '// &
+                            'belong to a physical surface named on a MATERIAL card', &
+                            file=msh%path, line=msh%eline(k))
             exit
          end if
          do j = 1, msh%nphys(k)
@@ -270,9 +265,8 @@ contains
             if (g > 0) kg = name_index(mat_names, msh%groups(g)%name)
             if (kg > 0) then
                if (imat /= 0 .and. imat /= mat_numbers(kg)) then
-                  call errors%add('E-GMSH', &
-                                  'element in two physical surfaces with different materials', &
-                                  file=msh%path, line=msh%eline(k))
+                  call errors%add('E-GMSH', 'element in two physical surfaces with different '// &
+                                  'materials', file=msh%path, line=msh%eline(k))
                end if
                imat = mat_numbers(kg)
             end if
@@ -283,9 +277,8 @@ contains
                if (.not. unmapped_reported(g)) then
                   unmapped_reported(g) = .true.
                   call errors%add('E-GMSH', 'physical surface "'//msh%groups(g)%name// &
-                                  '" has no MATERIAL card '// &
-                                  'in the MESH block of '//deck_file, file=msh%path, &
-                                  line=msh%eline(k))
+                                  '" has no MATERIAL card in the MESH block of '//deck_file, &
+                                  file=msh%path, line=msh%eline(k))
                end if
             end if
          end if

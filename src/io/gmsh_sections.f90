@@ -42,10 +42,8 @@ contains
       line = get_line(t, il)
       call tokens(line, b, nt)
       if (nt /= 3) then
-         call errors%add('E-GMSH', &
-                         '$MeshFormat: expected "version file-type data-size" (e.g. "4.1 0 '// &
-                         '8"), found "'// &
-                         short(trim(line))//'"', file=t%path, line=il)
+         call errors%add('E-GMSH', '$MeshFormat: expected "version file-type data-size" (e.g. '// &
+                         '"4.1 0 8"), found "'//short(trim(line))//'"', file=t%path, line=il)
          return
       end if
       ver = line(b(1, 1):b(2, 1))
@@ -53,8 +51,7 @@ contains
       if (ftype /= '0') then
          call errors%add('E-GMSH', 'binary .msh files are not supported (file-type '//ftype// &
                          '): save the mesh as ASCII, e.g. gmsh -2 -format msh41 file.geo, or '// &
-                         'with '// &
-                         'Mesh.Binary = 0', file=t%path, line=il)
+                         'with Mesh.Binary = 0', file=t%path, line=il)
          return
       end if
       if (ver == '4.1' .or. ver == '4.10') then
@@ -63,14 +60,13 @@ contains
          msh%version = '2.2'
       else
          call errors%add('E-GMSH', 'unsupported .msh format version '//ver// &
-                         ': expected 4.1 or 2.2 (ASCII); '// &
-                         'export with gmsh -format msh41 or msh22', file=t%path, line=il)
+                         ': expected 4.1 or 2.2 (ASCII); export with gmsh -format msh41 or msh22', &
+                         file=t%path, line=il)
          return
       end if
       if (line(b(1, 3):b(2, 3)) /= '8') then
          call errors%add('E-GMSH', '$MeshFormat: data-size '//line(b(1, 3):b(2, 3))// &
-                         ' is not supported '// &
-                         '(expected 8)', file=t%path, line=il)
+                         ' is not supported (expected 8)', file=t%path, line=il)
          return
       end if
       ok = .true.
@@ -98,10 +94,8 @@ contains
          q1 = index(line, '"')
          q2 = index(line, '"', back=.true.)
          if (q1 == 0 .or. q2 <= q1) then
-            call errors%add('E-GMSH', &
-                            '$PhysicalNames: expected a quoted name after dimension and tag, '// &
-                            'found "'// &
-                            short(trim(line))//'"', file=t%path, line=il)
+            call errors%add('E-GMSH', '$PhysicalNames: expected a quoted name after dimension '// &
+                            'and tag, found "'//short(trim(line))//'"', file=t%path, line=il)
             ok = .false.
             return
          end if
@@ -144,8 +138,8 @@ contains
             first = merge(5, 8, dim == 0)
             if (nt < first) then
                call errors%add('E-GMSH', '$Entities: expected an entity of dimension '// &
-                               itoa(dim)// &
-                               ', found "'//short(trim(line))//'"', file=t%path, line=il)
+                               itoa(dim)//', found "'//short(trim(line))//'"', file=t%path, &
+                               line=il)
                ok = .false.
                return
             end if
@@ -159,8 +153,8 @@ contains
             end if
             if (nphys > MAX_PHYS) then
                call errors%add('E-GMSH', '$Entities: an entity belongs to '//itoa(nphys)// &
-                               ' physical groups; '// &
-                               'at most '//itoa(MAX_PHYS)//' are supported', file=t%path, line=il)
+                               ' physical groups; at most '//itoa(MAX_PHYS)//' are supported', &
+                               file=t%path, line=il)
                ok = .false.
                return
             end if
@@ -199,9 +193,8 @@ contains
       call alloc_nodes(msh, v(2))
       n = 0
       do ib = 1, nblk
-         call read_ints(t, 'Nodes', &
-                        'an entity block header "entityDim entityTag parametric numNodesInBlock"', &
-                        4, v, errors, ok, il)
+         call read_ints(t, 'Nodes', 'an entity block header "entityDim entityTag parametric '// &
+                        'numNodesInBlock"', 4, v, errors, ok, il)
          if (.not. ok) return
          param = v(3)
          nin = v(4)
@@ -215,8 +208,7 @@ contains
          end if
          if (n + nin > msh%nnodes) then
             call errors%add('E-GMSH', '$Nodes: the blocks hold more nodes than the '// &
-                            itoa(msh%nnodes)// &
-                            ' declared', file=t%path, line=il)
+                            itoa(msh%nnodes)//' declared', file=t%path, line=il)
             ok = .false.
             return
          end if
@@ -242,8 +234,7 @@ contains
       end do
       if (n /= msh%nnodes) then
          call errors%add('E-GMSH', '$Nodes: '//itoa(msh%nnodes)// &
-                         ' nodes declared, the blocks hold '//itoa(n), &
-                         file=t%path, line=il)
+                         ' nodes declared, the blocks hold '//itoa(n), file=t%path, line=il)
          ok = .false.
          return
       end if
@@ -293,9 +284,8 @@ contains
       call alloc_elements(msh, v(2))
       n = 0
       do ib = 1, nblk
-         call read_ints(t, 'Elements', &
-                        'an entity block header "entityDim entityTag elementType '// &
-                        'numElementsInBlock"', 4, v, errors, ok, il)
+         call read_ints(t, 'Elements', 'an entity block header "entityDim entityTag '// &
+                        'elementType numElementsInBlock"', 4, v, errors, ok, il)
          if (.not. ok) return
          edim = v(1)
          etag = v(2)
@@ -306,18 +296,15 @@ contains
          nn = gmsh_nnode(ety)
          if (nn == 0) then
             call errors%add('E-GMSH', 'unsupported element type '//itoa(ety)//' ('// &
-                            type_name(ety)// &
-                            '): Kontakt2D takes 3-node triangles, 4-, 8- and 9-node '// &
-                            'quadrilaterals, and '// &
-                            'points and 2- or 3-node lines for physical groups', file=t%path, &
-                            line=il)
+                            type_name(ety)//'): Kontakt2D takes 3-node triangles, 4-, 8- and '// &
+                            '9-node quadrilaterals, and points and 2- or 3-node lines for '// &
+                            'physical groups', file=t%path, line=il)
             ok = .false.
             return
          end if
          if (n + nin > msh%nelems) then
             call errors%add('E-GMSH', '$Elements: the blocks hold more elements than the '// &
-                            itoa(msh%nelems)// &
-                            ' declared', file=t%path, line=il)
+                            itoa(msh%nelems)//' declared', file=t%path, line=il)
             ok = .false.
             return
          end if
@@ -330,8 +317,7 @@ contains
          end if
          do k = 1, nin
             call read_ints(t, 'Elements', 'an element line "tag node1 ... node'//itoa(nn)// &
-                           '" of type '// &
-                           itoa(ety), 1 + nn, v, errors, ok, il)
+                           '" of type '//itoa(ety), 1 + nn, v, errors, ok, il)
             if (.not. ok) return
             msh%etype(n + k) = ety
             msh%enodes(1:nn, n + k) = v(2:1 + nn)
@@ -345,8 +331,7 @@ contains
       end do
       if (n /= msh%nelems) then
          call errors%add('E-GMSH', '$Elements: '//itoa(msh%nelems)// &
-                         ' elements declared, the blocks hold '//itoa(n), &
-                         file=t%path, line=il)
+                         ' elements declared, the blocks hold '//itoa(n), file=t%path, line=il)
          ok = .false.
          return
       end if
@@ -367,19 +352,16 @@ contains
       call alloc_elements(msh, v(1))
       do k = 1, msh%nelems
          call read_ints(t, 'Elements', 'an element line "tag type ntags tags... nodes..."', 3, v, &
-                        errors, ok, il, &
-                        at_least=.true.)
+                        errors, ok, il, at_least=.true.)
          if (.not. ok) return
          ety = v(2)
          ntags = v(3)
          nn = gmsh_nnode(ety)
          if (nn == 0) then
             call errors%add('E-GMSH', 'unsupported element type '//itoa(ety)//' ('// &
-                            type_name(ety)// &
-                            '): Kontakt2D takes 3-node triangles, 4-, 8- and 9-node '// &
-                            'quadrilaterals, and '// &
-                            'points and 2- or 3-node lines for physical groups', file=t%path, &
-                            line=il)
+                            type_name(ety)//'): Kontakt2D takes 3-node triangles, 4-, 8- and '// &
+                            '9-node quadrilaterals, and points and 2- or 3-node lines for '// &
+                            'physical groups', file=t%path, line=il)
             ok = .false.
             return
          end if
@@ -391,8 +373,7 @@ contains
          end if
          t%pos = t%pos - 1
          call read_ints(t, 'Elements', 'an element line with '//itoa(ntags)//' tags and '// &
-                        itoa(nn)// &
-                        ' nodes', 3 + ntags + nn, v, errors, ok, il)
+                        itoa(nn)//' nodes', 3 + ntags + nn, v, errors, ok, il)
          if (.not. ok) return
          msh%etype(k) = ety
          msh%enodes(1:nn, k) = v(4 + ntags:3 + ntags + nn)

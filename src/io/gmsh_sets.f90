@@ -74,9 +74,8 @@ contains
                q = model_node(tags, model_of, tag)
                if (q == 0) then
                   call errors%add('E-GMSH', 'physical group "'//grp%name//'": node tag '// &
-                                  itoa(tag)// &
-                                  ' belongs to no 2-D element of the mesh', file=msh%path, &
-                                  line=msh%eline(k))
+                                  itoa(tag)//' belongs to no 2-D element of the mesh', &
+                                  file=msh%path, line=msh%eline(k))
                   return
                end if
                inset(q) = .true.
@@ -95,8 +94,8 @@ contains
                return
             else if (ie2 == 0) then
                call errors%add('E-GMSH', 'physical curve "'//grp%name// &
-                               '": line element is not an '// &
-                               'edge of any 2-D element', file=msh%path, line=msh%eline(k))
+                               '": line element is not an edge of any 2-D element', file=msh%path, &
+                               line=msh%eline(k))
                return
             end if
             nsel = nsel + 1

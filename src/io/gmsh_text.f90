@@ -8,8 +8,7 @@
 !! Every error is E-GMSH with the .msh file and the line.  Knows no section.
 module gmsh_text
       use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, &
-            ieee_set_halting_mode, &
-                                               ieee_set_flag
+            ieee_set_halting_mode, ieee_set_flag
       use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
    use errors, only: error_list_t
@@ -52,8 +51,7 @@ contains
          return
       end if
       open (newunit=u, file=path, access='stream', form='unformatted', status='old', &
-            action='read', &
-            iostat=ios, iomsg=msg)
+            action='read', iostat=ios, iomsg=msg)
       if (ios /= 0) then
          call errors%add('E-GMSH', 'cannot open mesh file: '//trim(msg), file=path)
          return
@@ -146,8 +144,7 @@ contains
       il = next_line(t)
       if (il == 0) then
          call errors%add('E-GMSH', 'truncated file: it ends inside $'//section//' (expected '// &
-                         what//')', &
-                         file=t%path, line=t%nlines)
+                         what//')', file=t%path, line=t%nlines)
          ok = .false.
          return
       end if
@@ -157,24 +154,22 @@ contains
          if (nt >= 1) then
             if (line(b(1, 1):b(1, 1)) == '$') then
                call errors%add('E-GMSH', '$'//section//' ends early: expected '//what// &
-                               ', found "'// &
-                               short(trim(line))//'"', file=t%path, line=il)
+                               ', found "'//short(trim(line))//'"', file=t%path, line=il)
                ok = .false.
                return
             end if
          end if
          call errors%add('E-GMSH', '$'//section//': expected '//what//' ('//itoa(n)// &
-                         ' integers), found "'// &
-                         short(trim(line))//'"', file=t%path, line=il)
+                         ' integers), found "'//short(trim(line))//'"', file=t%path, line=il)
          ok = .false.
          return
       end if
       do k = 1, n
          read (line(b(1, k):b(2, k)), *, iostat=ios) v(k)
          if (ios /= 0 .or. .not. is_int(line(b(1, k):b(2, k)))) then
-            call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'//line(b(1, &
-                            k):b(2, k))// &
-                            '" where an integer belongs', file=t%path, line=il)
+            call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'// &
+                            line(b(1, k):b(2, k))//'" where an integer belongs', file=t%path, &
+                            line=il)
             ok = .false.
             return
          end if
@@ -195,14 +190,12 @@ contains
       if (.not. ok) return
       if (n < 0) then
          call errors%add('E-GMSH', '$'//section//': expected a number of '//what// &
-                         ' >= 0, found '//itoa(n), &
-                         file=t%path, line=il)
+                         ' >= 0, found '//itoa(n), file=t%path, line=il)
          ok = .false.
       else if (n > (t%nlines - il)/per) then
          call errors%add('E-GMSH', 'truncated file: it ends inside $'//section//' ('//itoa(n)// &
-                         ' '//what// &
-                         ' declared, the file has only '//itoa(t%nlines - il)//' more lines)', &
-                         file=t%path, line=il)
+                         ' '//what//' declared, the file has only '//itoa(t%nlines - il)// &
+                         ' more lines)', file=t%path, line=il)
          ok = .false.
       end if
    end subroutine check_count
@@ -260,8 +253,7 @@ contains
       call tokens(line, b, nt)
       if (nt < first + n - 1) then
          call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'// &
-                         short(trim(line))//'"', &
-                         file=t%path, line=il)
+                         short(trim(line))//'"', file=t%path, line=il)
          ok = .false.
          return
       end if
@@ -280,15 +272,13 @@ contains
                if (.not. ieee_is_finite(x(k))) then
                   ! NaN, Inf, or out of range: every real read from a file is finite
                   call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'// &
-                                  short(tok)// &
-                                  '": not a finite number', file=t%path, line=il)
+                                  short(tok)//'": not a finite number', file=t%path, line=il)
                   ok = .false.
                else if (abs(x(k)) > MAX_COORDINATE) then
                   call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'// &
-                                  short(tok)// &
-                                  '": beyond '//rtoa(MAX_COORDINATE)// &
-                                  ' in magnitude (the geometry squares '// &
-                                  'lengths)', file=t%path, line=il)
+                                  short(tok)//'": beyond '//rtoa(MAX_COORDINATE)// &
+                                  ' in magnitude (the geometry squares lengths)', file=t%path, &
+                                  line=il)
                   ok = .false.
                end if
                if (.not. ok) then
@@ -300,8 +290,7 @@ contains
          if (ios /= 0) then
             call errors%add('E-GMSH', '$'//section//': expected '//what//', found "'// &
                             line(b(1, first + k - 1):b(2, first + k - 1))// &
-                            '" where a number belongs', &
-                            file=t%path, line=il)
+                            '" where a number belongs', file=t%path, line=il)
             ok = .false.
             return
          end if
@@ -323,9 +312,8 @@ contains
          ok = .false.
       else if (trim(adjustl(get_line(t, il))) /= '$End'//section) then
          call errors%add('E-GMSH', '$'//section//': expected $End'//section// &
-                         ' after the declared number of '// &
-                         'entries, found "'//short(trim(get_line(t, il)))//'"', file=t%path, &
-                         line=il)
+                         ' after the declared number of entries, found "'// &
+                         short(trim(get_line(t, il)))//'"', file=t%path, line=il)
          ok = .false.
       end if
    end subroutine expect_end
@@ -343,8 +331,7 @@ contains
          il = next_line(t)
          if (il == 0) then
             call errors%add('E-GMSH', 'truncated file: section $'//section//' has no $End'// &
-                            section, &
-                            file=t%path, line=il0)
+                            section, file=t%path, line=il0)
             ok = .false.
             return
          end if
