@@ -43,10 +43,12 @@ def main(argv=None):
     ap.add_argument("--compare", action="store_true", help="MESH decks: adaptive and uniform, in one table and chart")
     ap.add_argument("--max-steps", type=int, default=8, help="most meshes per method (default 8)")
     ap.add_argument("--max-growth", type=float, default=ad.MAX_GROWTH,
-                    help="adaptive: elements of a mesh over the last one's, at most (default %g; 0: no limit)"
+                    help="adaptive: elements of a mesh over the last one's, at most "
+                    "(default %g; 0: no limit)"
                     % ad.MAX_GROWTH)
     ap.add_argument("--no-singular", action="store_true",
-                    help="adaptive: no singular rate at the contact's singular edges (docs/adaptivity.md)")
+                    help="adaptive: no singular rate at the contact's singular edges "
+                    "(docs/adaptivity.md)")
     args = ap.parse_args(argv)
     try:
         if not os.path.isfile(args.deck):

@@ -87,6 +87,14 @@ CASES = {
     # non-nested meshes is not conforming); the energies measured do not converge monotonically
     "hertz_adapt": dict(measure=hertz_measure, exact=lambda: hertz_exact()["p0"], label="Hertz peak pressure p0",
                         title="Hertz cylinder on a half-plane (Q4, plane strain)", energy=False, target=0.01),
+    # the same model from a uniform start mesh (one size everywhere, about the graded start's DOFs):
+    # uniform refinement of a mesh nobody graded by hand against the adaptive route from the
+    # same mesh
+    "hertz_uniform": dict(measure=hertz_measure, exact=lambda: hertz_exact()["p0"],
+                          label="Hertz peak pressure p0",
+                          title="Hertz cylinder on a half-plane, uniform start mesh "
+                          "(Q4, plane strain)",
+                          energy=False, target=0.01),
     "punch_flat": dict(measure=punch_measure, exact=lambda: punch_exact()["band_mean"],
                        label="punch edge pressure (mean over 0.9b..b)",
                        title="Flat punch on a half-plane (Q4, plane strain)", energy=True, target=0.01),
@@ -177,8 +185,55 @@ def dofs_at(rows, tol):
     return rows[0]["dofs"] if rows and rows[0]["err"] <= tol else None
 
 
+def dofs_extrapolated(rows, tol):
+    """Where no mesh reached tol: the DOFs at which the power law through the last two meshes'
+    errors (err = C N^-r, r > 0) reaches it, with the rate r (None when they do not fall)."""
+    if len(rows) < 2:
+        return None
+    a, b = rows[-2], rows[-1]
+    if not (b["err"] < a["err"]) or b["dofs"] <= a["dofs"]:
+        return None
+    r = math.log(a["err"] / b["err"]) / math.log(b["dofs"] / a["dofs"])
+    return b["dofs"] * (b["err"] / tol) ** (1.0 / r), r
+
+
+def summary(studies, tol):
+    """The table of docs/adaptivity.md: per case the DOFs each method needs for tol, interpolated
+    log-log between the meshes around it (extrapolated along the last two meshes' rate where the
+    budget ended the sequence first, marked), the first mesh within tol, and the ratios."""
+    md = ["| case | uniform: DOFs to %g %% (interpolated) | adaptive | uniform / adaptive "
+          "| first mesh within %g %%: uniform | adaptive | uniform / adaptive |"
+          % (100 * tol, 100 * tol),
+          "|---|---|---|---|---|---|---|"]
+    for s in studies:
+        cells = []
+        vals = []
+        for rs in (s["uni"], s["ada"]):
+            n = dofs_at(rs, tol)
+            if n:
+                cells.append("%.0f" % n)
+                vals.append(n)
+                continue
+            ext = dofs_extrapolated(rs, tol)
+            if ext:
+                cells.append("≈ %.0f (extrapolated, N^−%.2f beyond %d)"
+                             % (ext[0], ext[1], rs[-1]["dofs"]))
+                vals.append(ext[0])
+            else:
+                cells.append("—")
+                vals.append(None)
+        ratio = "%.2f" % (vals[0] / vals[1]) if all(vals) else "—"
+        fu, fa = first_within(s["uni"], tol), first_within(s["ada"], tol)
+        md.append("| %s | %s | %s | %s | %s | %s | %s |" % (
+            s["name"], cells[0], cells[1], ratio,
+            "%d" % fu["dofs"] if fu else "none within the budget",
+            "%d" % fa["dofs"] if fa else "none within the budget",
+            "%.2f" % (fu["dofs"] / fa["dofs"]) if fu and fa else "—"))
+    return "\n".join(md) + "\n"
+
+
 def report(studies, tol):
-    md = []
+    md = [summary(studies, tol)]
     for s in studies:
         second = ("from the three last adaptive meshes %.7g, N^−%.2f: the second effectivity" % (s["Uinf2"], s["q2"])
                   if math.isfinite(s["Uinf2"]) else "none from the last adaptive meshes: too alike in size")

@@ -33,26 +33,29 @@ SOLVERS = ["mumps", "umfpack"]
 def run(exe, nnode, nx, solver, repeat):
     """One bench_estimate run: its CSV line as a dict."""
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
-    r = subprocess.run([exe, str(nnode), str(nx), solver, str(repeat)], capture_output=True, text=True,
-                       env=env, check=True)
+    r = subprocess.run([exe, str(nnode), str(nx), solver, str(repeat)], capture_output=True,
+                       text=True, env=env, check=True)
     line = r.stdout.strip().splitlines()[-1]
     return dict(zip(FIELDS, [v.strip() for v in line.split(",")]))
 
 
 def table(rows):
     md = ["| element | DOFs | solver | factorization + solve [s] | stress recovery [s] "
-          "| estimate before [s] | estimate now [s] | before / solve | now / solve | indicators differ by |",
+          "| estimate before [s] | estimate now [s] | before / solve | now / solve "
+          "| indicators differ by |",
           "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         solve = float(r["factorize_s"]) + float(r["solve_s"])
         md.append("| Q%s | %s | %s | %.3f | %.4f | %.4f | %.4f | %.1f %% | %.1f %% | %.1e |" % (
-            r["nnode"], r["neq"], r["solver"], solve, float(r["recover_s"]), float(r["estimate_ref_s"]),
-            float(r["estimate_s"]), 100 * float(r["ratio_ref"]), 100 * float(r["ratio"]), float(r["max_diff"])))
+            r["nnode"], r["neq"], r["solver"], solve, float(r["recover_s"]),
+            float(r["estimate_ref_s"]), float(r["estimate_s"]), 100 * float(r["ratio_ref"]),
+            100 * float(r["ratio"]), float(r["max_diff"])))
     return "\n".join(md) + "\n"
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--csv", default=None)

@@ -318,7 +318,8 @@ class Sizes(unittest.TestCase):
         self.assertAlmostEqual(n, 400.0, delta=1e-9)
 
     def test_growth_limit(self):
-        # a long way to the target (eta 0.1 -> 0.001) without a limit asks for many times the elements;
+        # a long way to the target (eta 0.1 -> 0.001) without a limit asks for many times the
+        # elements;
         # with max_growth = 4 the step aims at a larger target of the same equidistributed shape
         rng = np.random.default_rng(3)
         eta = rng.uniform(1e-3, 3e-2, 300)
@@ -328,7 +329,7 @@ class Sizes(unittest.TestCase):
         lim, n_lim = ad.new_sizes(eta, h, np.ones(300), 1e-3, shrink=(1e-9, 1e9), max_growth=4.0)
         self.assertAlmostEqual(n_lim, 4.0 * 300, delta=1e-6 * n_lim)
         self.assertAlmostEqual(n_lim, np.sum(1 / lim ** 2), delta=1e-9 * n_lim)
-        ratio = lim / free                                  # one factor for every element: same shape
+        ratio = lim / free                # one factor for every element: the same shape
         np.testing.assert_allclose(ratio, ratio[0], rtol=1e-10)
         self.assertGreater(ratio[0], 1.5)
         # a mesh within the growth allowed is not touched by the limit
@@ -337,8 +338,8 @@ class Sizes(unittest.TestCase):
         np.testing.assert_array_equal(near, near_lim)
 
     def test_singular_rate(self):
-        # an element at a singular point (rate lambda = 1/2) keeps eta^2 s^(2 lambda) in its child at
-        # the point: its size makes that equal to the new elements' common error^2
+        # an element at a singular point (rate lambda = 1/2) keeps eta^2 s^(2 lambda) in its
+        # child at the point: its size makes that equal to the new elements' common error^2
         eta = np.full(50, 1e-3)
         eta[7] = 5e-2
         rate = np.zeros(50)
@@ -361,13 +362,15 @@ class QuadraticMeshes(unittest.TestCase):
         work = work_dir("adapt_quad_")
         geo = os.path.join(work, "tri.geo")
         with open(geo, "w") as f:
-            f.write("Point(1) = {0, 0, 0, 0.3}; Point(2) = {2, 0, 0, 0.05}; Point(3) = {0, 1.5, 0, 0.3};\n"
+            f.write("Point(1) = {0, 0, 0, 0.3}; Point(2) = {2, 0, 0, 0.05};\n"
+                    "Point(3) = {0, 1.5, 0, 0.3};\n"
                     "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};\n"
                     "Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};\n"
                     'Physical Surface("body") = {1};\n'
                     "Mesh.ElementOrder = 2; Mesh.SecondOrderIncomplete = 1;\n")
         plain = os.path.join(work, "plain.msh")
-        subprocess.run(["gmsh", "-2", "-format", "msh41", geo, "-o", plain], capture_output=True, check=True)
+        subprocess.run(["gmsh", "-2", "-format", "msh41", geo, "-o", plain], capture_output=True,
+                       check=True)
         self.assertGreater(ad.msh_element_types(plain).get(9, 0), 10)
         for factor in (1.0, 0.5):
             msh = os.path.join(work, "adapt_%g.msh" % factor)

@@ -505,7 +505,8 @@ def singular_rates(result, lam=0.5):
                 continue
             nodes.add(int(c.node_a[j]) - 1)
             if "master_nodes" in c:
-                nodes.update(int(v) - 1 for v, w in zip(c.master_nodes[j], c.master_weights[j]) if v > 0 and w > 0)
+                nodes.update(int(v) - 1 for v, w in zip(c.master_nodes[j], c.master_weights[j])
+                             if v > 0 and w > 0)
             else:
                 nodes.add(int(c.node_b[j]) - 1)
     if not nodes:
@@ -631,10 +632,10 @@ def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh"):
         raise AdaptError("gmsh failed on %s (exit code %d; its output: %s)" % (wrapper, rc, log))
     bad = {t: n for t, n in msh_element_types(msh).items() if t not in MSH_SURFACE_TYPES_READ}
     if bad:
-        raise AdaptError("%s: gmsh made %s from %s, which kontakt2d does not read (it reads 3- and 4-node, "
-                         "8- and 9-node elements; docs/adaptivity.md, \"Quadratic meshes\")"
-                         % (msh, ", ".join("%d elements of gmsh type %d" % (n, t) for t, n in sorted(bad.items())),
-                            geo))
+        what = ", ".join("%d elements of gmsh type %d" % (n, t) for t, n in sorted(bad.items()))
+        raise AdaptError("%s: gmsh made %s from %s, which kontakt2d does not read (it reads 3- and "
+                         "4-node, 8- and 9-node elements; docs/adaptivity.md, \"Quadratic meshes\")"
+                         % (msh, what, geo))
     return cpu
 
 
