@@ -1,6 +1,8 @@
 !> A frozen copy of the error estimate as it was before its speed-up (modules
-!! error_estimator and error_estimate), renamed: bench/bench_estimate.F90 times it
-!! beside the current one in the same run and compares their values.
+!! error_estimator and error_estimate of the commit before it, renamed; its long lines
+!! wrapped and the contact interface's indicator, which the benchmark does not use, left
+!! out): bench/bench_estimate.F90 times it beside the current one in the same run and
+!! compares their values.
 !> Kernels of the recovery-based (Zienkiewicz-Zhu) error estimate: the
 !! least-squares fit of a polynomial to the sampled stresses of one patch
 !! (superconvergent patch recovery), its value at a point, and the energy
@@ -179,7 +181,7 @@ contains
    !! recovery (`solid2d::element_stresses`).  ierr: 0, the first point with
    !! det J <= 0, or -1 for an unsupported element or rule.
    pure subroutine gauss_volumes(ntype, nnode, elcod, thick, ngaus, ngp, shape_gp, dvol, ierr)
-      integer, intent(in) :: ntype                   !! 1 plane stress, 2 plane strain, 3 axisymmetric
+      integer, intent(in) :: ntype                   !! 1 plane stress, 2 plane strain, 3 axisym.
       integer, intent(in) :: nnode                   !! nodes per element
       real(dp), intent(in) :: elcod(2, nnode)        !! nodal coordinates [length]
       real(dp), intent(in) :: thick                  !! thickness, plane problems [length]
@@ -234,7 +236,8 @@ contains
       call element_gauss_rule(nnode, ntype, ngaus, posgp, weigp, ngp)
       if (recovery_terms(nnode) == 0) ngp = 0
       do ig = 1, ngp
-         call shape_functions(nnode, posgp(1, ig), posgp(2, ig), shape_gp(:, ig), deriv_gp(:, :, ig))
+         call shape_functions(nnode, posgp(1, ig), posgp(2, ig), shape_gp(:, ig), &
+                              deriv_gp(:, :, ig))
       end do
    end subroutine rule_shapes
 
@@ -244,8 +247,9 @@ contains
    !! points: sig_zz = nu (sig_xx + sig_yy) in plane strain, the hoop stress
    !! from u_r / r in axisymmetry.  ierr: 0, or the first point with det J <= 0
    !! or (axisymmetric) r <= 0.
-   pure subroutine point_stresses(ntype, nnode, elcod, young, poiss, eldis, npt, shape_pt, deriv_pt, xy, sig, ierr)
-      integer, intent(in) :: ntype                      !! 1 plane stress, 2 plane strain, 3 axisymmetric
+   pure subroutine point_stresses(ntype, nnode, elcod, young, poiss, eldis, npt, shape_pt, &
+                                 deriv_pt, xy, sig, ierr)
+      integer, intent(in) :: ntype                      !! 1 plane stress, 2 plane strain, 3 axisym.
       integer, intent(in) :: nnode                      !! nodes per element
       real(dp), intent(in) :: elcod(2, nnode)           !! nodal coordinates [length]
       real(dp), intent(in) :: young                     !! Young's modulus [stress]
@@ -284,8 +288,8 @@ contains
    !! functions, and ene2 = ||sigma_h||_E^2 (= ||u_h||_E^2 on the element),
    !! both by the element's Gauss rule (shape functions, derivatives and
    !! weights from `rule_shapes`), at whose points sigma_h is given.
-   pure subroutine element_error_energy(ntype, nnode, elcod, young, poiss, thick, ngp, shape_gp, deriv_gp, &
-                                        weigp, sig_star, sig_gp, err2, ene2, ierr)
+   pure subroutine element_error_energy(ntype, nnode, elcod, young, poiss, thick, ngp, shape_gp, &
+                                        deriv_gp, weigp, sig_star, sig_gp, err2, ene2, ierr)
       integer, intent(in) :: ntype                 !! 1 plane stress, 2 plane strain, 3 axisymmetric
       integer, intent(in) :: nnode                 !! nodes per element
       real(dp), intent(in) :: elcod(2, nnode)      !! nodal coordinates [length]
@@ -377,9 +381,10 @@ module error_estimate_ref
    use errors, only: status_t, STAT_JACOBIAN
    use strings, only: itoa
    use model, only: model_t, MAX_NODE
-   use records, only: body_fields_t, contact_fields_t, NS_OPEN
+   use records, only: body_fields_t, contact_fields_t
    use topology, only: corner_count
-   use error_estimator_ref, only: MAX_TERMS, recovery_terms, patch_fit, patch_value, element_error_energy, &
+   use error_estimator_ref, only: MAX_TERMS, recovery_terms, patch_fit, patch_value, &
+                                  element_error_energy, &
                               rule_shapes, point_stresses
    use quadrature, only: max_gp
    implicit none
@@ -420,13 +425,16 @@ contains
          elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
          ierr = -1
          if (rules(nn)%ngp == body%gp_start(ie + 1) - body%gp_start(ie)) then
-            call element_error_energy(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
-                                      m%mats(imat)%thick, rules(nn)%ngp, rules(nn)%shp, rules(nn)%der, rules(nn)%w, &
-                                      sstar(:, 1:nn, ie), body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1), &
+            call element_error_energy(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, &
+                                      m%mats(imat)%poiss, m%mats(imat)%thick, rules(nn)%ngp, &
+                                      rules(nn)%shp, rules(nn)%der, rules(nn)%w, &
+                                      sstar(:, 1:nn, ie), &
+                                      body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1), &
                                       e2(ie), u2(ie), ierr)
          end if
          if (ierr /= 0) then
-            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (error estimate): no valid Gauss rule or det J <= 0')
+            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)// &
+                            ' (error estimate): no valid Gauss rule or det J <= 0')
             return
          end if
       end do
@@ -445,11 +453,6 @@ contains
       body%error_norm = sqrt(sum(e2))
       body%energy_norm = sqrt(sum(u2))
       body%estimated = .true.
-      if (allocated(m%contact%pairs) .and. allocated(cf%pressure)) then
-         if (size(m%contact%pairs) > 0 .and. size(cf%pressure) == size(m%contact%pairs)) then
-            call interface_resolution(m, cf)
-         end if
-      end if
    end subroutine estimate_error_ref
 
    !> Recovered stresses sigma* at the nodes of every element, (4, nnode of
@@ -573,7 +576,8 @@ contains
                if (m%matno(ie) /= imat) cycle
                nterm = min(nterm, recovery_terms(m%nnode_e(ie)))
                do n = 1, m%nnode_e(ie)
-                  h = max(h, abs(m%coord(1, m%lnods(n, ie)) - centre(1)), abs(m%coord(2, m%lnods(n, ie)) - centre(2)))
+                  h = max(h, abs(m%coord(1, m%lnods(n, ie)) - centre(1)), &
+                          abs(m%coord(2, m%lnods(n, ie)) - centre(2)))
                end do
                g0 = sstart(ie)
                g1 = sstart(ie + 1) - 1
@@ -633,10 +637,12 @@ contains
             if (seen(is) == npatch) cycle
             seen(is) = npatch
             if (pass == 1) then
-               acc(:, is) = acc(:, is) + patch_value(nterm, coef, centre, h, m%coord(:, m%lnods(k, ie)))
+               acc(:, is) = acc(:, is) + patch_value(nterm, coef, centre, h, &
+                                                     m%coord(:, m%lnods(k, ie)))
                cnt(is) = cnt(is) + 1
             else if (cnt(is) == 0) then
-               acc2(:, is) = acc2(:, is) + patch_value(nterm, coef, centre, h, m%coord(:, m%lnods(k, ie)))
+               acc2(:, is) = acc2(:, is) + patch_value(nterm, coef, centre, h, &
+                                                       m%coord(:, m%lnods(k, ie)))
                cnt2(is) = cnt2(is) + 1
             end if
          end do
@@ -698,8 +704,10 @@ contains
       if (.not. all(own)) call element_rules(m, 2, r2)
       do ie = 1, m%nelem
          if (own(ie)) then
-            sxy(:, sstart(ie):sstart(ie + 1) - 1) = body%xygp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1)
-            ssig(:, sstart(ie):sstart(ie + 1) - 1) = body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1)
+            associate (g0 => body%gp_start(ie), g1 => body%gp_start(ie + 1) - 1)
+               sxy(:, sstart(ie):sstart(ie + 1) - 1) = body%xygp(:, g0:g1)
+               ssig(:, sstart(ie):sstart(ie + 1) - 1) = body%sig_gp(:, g0:g1)
+            end associate
             cycle
          end if
          nn = m%nnode_e(ie)
@@ -707,11 +715,15 @@ contains
          elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
          eldis(:, 1:nn) = body%disp(:, m%lnods(1:nn, ie))
          ierr = -1
-         if (r2(nn)%ngp == 4) call point_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
-                                                  eldis(:, 1:nn), 4, r2(nn)%shp, r2(nn)%der, &
-                                                  sxy(:, sstart(ie):sstart(ie) + 3), ssig(:, sstart(ie):sstart(ie) + 3), ierr)
+         if (r2(nn)%ngp == 4) then
+            call point_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, &
+                                m%mats(imat)%poiss, eldis(:, 1:nn), 4, r2(nn)%shp, r2(nn)%der, &
+                                sxy(:, sstart(ie):sstart(ie) + 3), &
+                                ssig(:, sstart(ie):sstart(ie) + 3), ierr)
+         end if
          if (ierr /= 0) then
-            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (error estimate): its 2 x 2 Gauss points fail')
+            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)// &
+                            ' (error estimate): its 2 x 2 Gauss points fail')
             return
          end if
       end do
@@ -734,97 +746,5 @@ contains
          rules(nn)%w = w(1:ngp)
       end do
    end subroutine element_rules
-
-   !> Resolution indicators of the contact pressure (see the module header):
-   !! cf%resolution per pair, cf%zone_width, zone_pairs and zone_jump per
-   !! interface.
-   subroutine interface_resolution(m, cf)
-      type(model_t), intent(in) :: m
-      type(contact_fields_t), intent(inout) :: cf
-      integer :: nif, jf, np, j, k, n, first, last
-      integer, allocatable :: idx(:)
-      real(dp), allocatable :: s(:)
-      real(dp) :: tmean(2), pmax, lo, hi
-      logical :: closed_j
-
-      associate (pairs => m%contact%pairs)
-         np = size(pairs)
-         nif = max(1, maxval(pairs%iface))
-         if (allocated(cf%resolution)) deallocate (cf%resolution, cf%zone_width, cf%zone_pairs, cf%zone_jump)
-         allocate (cf%resolution(np), cf%zone_width(nif), cf%zone_pairs(nif), cf%zone_jump(nif))
-         cf%resolution = 0.0_dp
-         cf%zone_width = 0.0_dp
-         cf%zone_pairs = 0
-         cf%zone_jump = 0.0_dp
-         do jf = 1, nif
-            idx = pack([(j, j=1, np)], pairs%iface == jf)
-            n = size(idx)
-            if (n == 0) cycle
-            tmean = 0.0_dp
-            do k = 1, n
-               ! tangents of one orientation (a curved interface turns less than 180 degrees)
-               tmean = tmean + sign(1.0_dp, dot_product(pairs(idx(k))%t, pairs(idx(1))%t))*pairs(idx(k))%t
-            end do
-            if (norm2(tmean) > 0.0_dp) tmean = tmean/norm2(tmean)
-            s = [(dot_product(pairs(idx(k))%position, tmean), k=1, n)]
-            call sort_by_key(s, idx)
-            pmax = maxval(cf%pressure(idx))
-            first = 0
-            last = 0
-            do k = 1, n
-               j = idx(k)
-               closed_j = cf%normal_state(j) /= NS_OPEN
-               if (closed_j) then
-                  if (first == 0) first = k
-                  last = k
-                  cf%zone_pairs(jf) = cf%zone_pairs(jf) + 1
-               end if
-               if (pmax <= 0.0_dp) cycle
-               if (k > 1) cf%resolution(j) = max(cf%resolution(j), abs(cf%pressure(j) - cf%pressure(idx(k - 1)))/pmax)
-               if (k < n) cf%resolution(j) = max(cf%resolution(j), abs(cf%pressure(idx(k + 1)) - cf%pressure(j))/pmax)
-            end do
-            if (first > 0) then
-               lo = s(first)
-               hi = s(last)
-               if (first > 1) lo = 0.5_dp*(s(first) + s(first - 1))
-               if (last < n) hi = 0.5_dp*(s(last) + s(last + 1))
-               cf%zone_width(jf) = hi - lo
-            end if
-            cf%zone_jump(jf) = maxval(cf%resolution(idx))
-         end do
-      end associate
-   end subroutine interface_resolution
-
-   !> Sort the keys s ascending, carrying idx along (merge sort, stable).
-   pure subroutine sort_by_key(s, idx)
-      real(dp), intent(inout) :: s(:)
-      integer, intent(inout) :: idx(:)
-      real(dp) :: sw(size(s))
-      integer :: iw(size(s)), width, lo, mid, hi, i, j, k, n
-      n = size(s)
-      width = 1
-      do while (width < n)
-         do lo = 1, n, 2*width
-            mid = min(lo + width - 1, n)
-            hi = min(lo + 2*width - 1, n)
-            i = lo
-            j = mid + 1
-            do k = lo, hi
-               if (i <= mid .and. (j > hi .or. s(min(i, n)) <= s(min(j, n)))) then
-                  sw(k) = s(i)
-                  iw(k) = idx(i)
-                  i = i + 1
-               else
-                  sw(k) = s(j)
-                  iw(k) = idx(j)
-                  j = j + 1
-               end if
-            end do
-         end do
-         s = sw
-         idx = iw
-         width = 2*width
-      end do
-   end subroutine sort_by_key
 
 end module error_estimate_ref
