@@ -194,11 +194,12 @@ def dofs_at(rows, tol):
 
 def dofs_extrapolated(rows, tol):
     """Where no mesh reached tol: the DOFs at which the power law through the last two meshes'
-    errors (err = C N^-r, r > 0) reaches it, with the rate r (None when they do not fall)."""
-    if len(rows) < 2:
+    errors (err = C N^-r, r > 0) reaches it, with the rate r; None unless the last three meshes'
+    errors fall (a sequence not yet in its asymptotic range extrapolates to nothing)."""
+    if len(rows) < 3:
         return None
-    a, b = rows[-2], rows[-1]
-    if not (b["err"] < a["err"]) or b["dofs"] <= a["dofs"]:
+    z, a, b = rows[-3], rows[-2], rows[-1]
+    if not (b["err"] < a["err"] < z["err"]) or not (z["dofs"] < a["dofs"] < b["dofs"]):
         return None
     r = math.log(a["err"] / b["err"]) / math.log(b["dofs"] / a["dofs"])
     return b["dofs"] * (b["err"] / tol) ** (1.0 / r), r
@@ -226,10 +227,19 @@ def summary(studies, tol):
                 cells.append("≈ %.0f (extrapolated, N^−%.2f beyond %d)"
                              % (ext[0], ext[1], rs[-1]["dofs"]))
                 vals.append(ext[0])
+            elif rs:
+                # not reached, not extrapolable: more than the largest mesh run
+                cells.append("> %d (%.2f %% there)" % (rs[-1]["dofs"], 100 * rs[-1]["err"]))
+                vals.append(-rs[-1]["dofs"])
             else:
                 cells.append("—")
                 vals.append(None)
-        ratio = "%.2f" % (vals[0] / vals[1]) if all(vals) else "—"
+        if all(v and v > 0 for v in vals):
+            ratio = "%.2f" % (vals[0] / vals[1])
+        elif vals[0] and vals[1] and vals[0] < 0 < vals[1]:
+            ratio = "> %.2f" % (-vals[0] / vals[1])     # a lower bound: uniform needs more
+        else:
+            ratio = "—"
         fu, fa = first_within(s["uni"], tol), first_within(s["ada"], tol)
         md.append("| %s | %s | %s | %s | %s | %s | %s |" % (
             s["name"], cells[0], cells[1], ratio,
