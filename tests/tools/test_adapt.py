@@ -360,6 +360,7 @@ class QuadraticMeshes(unittest.TestCase):
         # (gmsh type 9, which kontakt2d does not read); through tools/adapt.py's meshing, with a
         # graded size field too, only 8-node quadrilaterals come out
         work = work_dir("adapt_quad_")
+        self.addCleanup(shutil.rmtree, work, ignore_errors=True)
         geo = os.path.join(work, "tri.geo")
         with open(geo, "w") as f:
             f.write("Point(1) = {0, 0, 0, 0.3}; Point(2) = {2, 0, 0, 0.05};\n"
