@@ -2,12 +2,15 @@
 """Refine a model until its estimated error is below a target (docs/adaptivity.md).
 
     tools/adapt.py DECK --target 0.01 [--max-dofs N] [-o DIR] [--exe KONTAKT2D]
-                   [--uniform] [--compare] [--max-steps N]
+                   [--uniform] [--compare] [--max-steps N] [--max-growth G] [--no-singular]
 
 A deck with a MESH block whose .geo lies beside its .msh is remeshed by gmsh: adaptively, from
 a size field made of the error indicators of the last run (the program's `error_indicator`
-when the result file has it, else the patch-recovery estimate of k2d.adapt), or with --uniform by
-halving the .geo's sizes; --compare runs both.  A card deck (ELEMENTS and NODES) is refined
+when the result file has it, else the patch-recovery estimate of k2d.adapt; each mesh at most
+about G times the elements of the last, default 4; the contact's singular edges refined at
+their own rate unless --no-singular), or with --uniform by halving the .geo's sizes; --compare
+runs both.  A quadratic .geo is meshed with quadrilaterals only (the program has no 6-node
+triangle).  A card deck (ELEMENTS and NODES) is refined
 uniformly, every element split into four, for at least three meshes, and the key outputs (peak
 pressure, contact width, approach, largest von Mises stress, slip zone) are extrapolated by
 Richardson's rule with their estimated error.
@@ -39,6 +42,13 @@ def main(argv=None):
     ap.add_argument("--uniform", action="store_true", help="MESH decks: halve the .geo's sizes instead of adapting")
     ap.add_argument("--compare", action="store_true", help="MESH decks: adaptive and uniform, in one table and chart")
     ap.add_argument("--max-steps", type=int, default=8, help="most meshes per method (default 8)")
+    ap.add_argument("--max-growth", type=float, default=ad.MAX_GROWTH,
+                    help="adaptive: elements of a mesh over the last one's, at most "
+                    "(default %g; 0: no limit)"
+                    % ad.MAX_GROWTH)
+    ap.add_argument("--no-singular", action="store_true",
+                    help="adaptive: no singular rate at the contact's singular edges "
+                    "(docs/adaptivity.md)")
     args = ap.parse_args(argv)
     try:
         if not os.path.isfile(args.deck):
@@ -61,7 +71,8 @@ def main(argv=None):
         rich = {}
         if kind == "mesh":
             rows = ad.adapt_mesh_deck(args.deck, args.target, args.max_dofs, out, exe, uniform=args.uniform,
-                                      max_steps=args.max_steps)
+                                      max_steps=args.max_steps, max_growth=args.max_growth or None,
+                                      singular=not args.no_singular)
             if args.compare and not args.uniform:
                 rows += ad.adapt_mesh_deck(args.deck, args.target, args.max_dofs, out, exe, uniform=True,
                                            max_steps=args.max_steps)

@@ -21,6 +21,9 @@ inputs/adapt/ and measures every mesh of both sequences against the closed forms
 
 * punch_flat_q8: the same punch with 8-node quadrilaterals (punch_flat_q8.geo includes
   punch_flat.geo and asks for incomplete second order).
+* hertz_uniform: hertz_adapt's model from a uniform start mesh (one size, 3 mm, everywhere:
+  about the DOFs of hertz_adapt's graded start), so that uniform refinement and the adaptive
+  route start from the same mesh nobody graded by hand.
 
 For each mesh: DOFs, the program's energy estimate, ||u_h||^2 (twice the strain energy, by the
 Gauss rules), the measure's error against the closed form, CPU seconds (adapt.py's CSV).  The
@@ -29,7 +32,11 @@ three finest uniform meshes, ||u||^2 - ||u_h||^2 = C N^-q (three equations for |
 and the true relative energy error sqrt((||u||^2 - ||u_h||^2) / ||u||^2) (Galerkin
 orthogonality; for contact with a converged contact zone) gives the effectivity estimate /
 true.  Rates: log(e_last / e_first) / log(N_last / N_first) over each sequence.
-The report (Markdown) goes to --md (default stdout) and the chart to --png.
+The report (Markdown) opens with the summary table of docs/adaptivity.md: per case the DOFs
+each method needs for --tol (1 %) on its measure, interpolated log-log between the meshes
+around it (extrapolated along the last two meshes' rate, and marked so, where the budget ended
+a sequence first), the first mesh within --tol, and the ratios uniform / adaptive.
+It goes to --md (default stdout) and the chart to --png.
 """
 import argparse
 import csv
@@ -87,6 +94,14 @@ CASES = {
     # non-nested meshes is not conforming); the energies measured do not converge monotonically
     "hertz_adapt": dict(measure=hertz_measure, exact=lambda: hertz_exact()["p0"], label="Hertz peak pressure p0",
                         title="Hertz cylinder on a half-plane (Q4, plane strain)", energy=False, target=0.01),
+    # the same model from a uniform start mesh (one size everywhere, about the graded start's DOFs):
+    # uniform refinement of a mesh nobody graded by hand against the adaptive route from the
+    # same mesh
+    "hertz_uniform": dict(measure=hertz_measure, exact=lambda: hertz_exact()["p0"],
+                          label="Hertz peak pressure p0",
+                          title="Hertz cylinder on a half-plane, uniform start mesh "
+                          "(Q4, plane strain)",
+                          energy=False, target=0.01),
     "punch_flat": dict(measure=punch_measure, exact=lambda: punch_exact()["band_mean"],
                        label="punch edge pressure (mean over 0.9b..b)",
                        title="Flat punch on a half-plane (Q4, plane strain)", energy=True, target=0.01),
@@ -177,8 +192,65 @@ def dofs_at(rows, tol):
     return rows[0]["dofs"] if rows and rows[0]["err"] <= tol else None
 
 
+def dofs_extrapolated(rows, tol):
+    """Where no mesh reached tol: the DOFs at which the power law through the last two meshes'
+    errors (err = C N^-r, r > 0) reaches it, with the rate r; None unless the last three meshes'
+    errors fall (a sequence not yet in its asymptotic range extrapolates to nothing)."""
+    if len(rows) < 3:
+        return None
+    z, a, b = rows[-3], rows[-2], rows[-1]
+    if not (b["err"] < a["err"] < z["err"]) or not (z["dofs"] < a["dofs"] < b["dofs"]):
+        return None
+    r = math.log(a["err"] / b["err"]) / math.log(b["dofs"] / a["dofs"])
+    return b["dofs"] * (b["err"] / tol) ** (1.0 / r), r
+
+
+def summary(studies, tol):
+    """The table of docs/adaptivity.md: per case the DOFs each method needs for tol, interpolated
+    log-log between the meshes around it (extrapolated along the last two meshes' rate where the
+    budget ended the sequence first, marked), the first mesh within tol, and the ratios."""
+    md = ["| case | uniform: DOFs to %g %% (interpolated) | adaptive | uniform / adaptive "
+          "| first mesh within %g %%: uniform | adaptive | uniform / adaptive |"
+          % (100 * tol, 100 * tol),
+          "|---|---|---|---|---|---|---|"]
+    for s in studies:
+        cells = []
+        vals = []
+        for rs in (s["uni"], s["ada"]):
+            n = dofs_at(rs, tol)
+            if n:
+                cells.append("%.0f" % n)
+                vals.append(n)
+                continue
+            ext = dofs_extrapolated(rs, tol)
+            if ext:
+                cells.append("≈ %.0f (extrapolated, N^−%.2f beyond %d)"
+                             % (ext[0], ext[1], rs[-1]["dofs"]))
+                vals.append(ext[0])
+            elif rs:
+                # not reached, not extrapolable: more than the largest mesh run
+                cells.append("> %d (%.2f %% there)" % (rs[-1]["dofs"], 100 * rs[-1]["err"]))
+                vals.append(-rs[-1]["dofs"])
+            else:
+                cells.append("—")
+                vals.append(None)
+        if all(v and v > 0 for v in vals):
+            ratio = "%.2f" % (vals[0] / vals[1])
+        elif vals[0] and vals[1] and vals[0] < 0 < vals[1]:
+            ratio = "> %.2f" % (-vals[0] / vals[1])     # a lower bound: uniform needs more
+        else:
+            ratio = "—"
+        fu, fa = first_within(s["uni"], tol), first_within(s["ada"], tol)
+        md.append("| %s | %s | %s | %s | %s | %s | %s |" % (
+            s["name"], cells[0], cells[1], ratio,
+            "%d" % fu["dofs"] if fu else "none within the budget",
+            "%d" % fa["dofs"] if fa else "none within the budget",
+            "%.2f" % (fu["dofs"] / fa["dofs"]) if fu and fa else "—"))
+    return "\n".join(md) + "\n"
+
+
 def report(studies, tol):
-    md = []
+    md = [summary(studies, tol)]
     for s in studies:
         second = ("from the three last adaptive meshes %.7g, N^−%.2f: the second effectivity" % (s["Uinf2"], s["q2"])
                   if math.isfinite(s["Uinf2"]) else "none from the last adaptive meshes: too alike in size")

@@ -51,8 +51,8 @@ module error_estimate
    use model, only: model_t, MAX_NODE
    use records, only: body_fields_t, contact_fields_t, NS_OPEN
    use topology, only: corner_count
-   use error_estimator, only: MAX_TERMS, recovery_terms, patch_fit, patch_value, element_error_energy, &
-                              rule_shapes, point_stresses
+   use error_estimator, only: MAX_TERMS, recovery_terms, patch_fit, fit_basis_xy, &
+                              element_error_energy, rule_shapes, point_stresses
    use quadrature, only: max_gp
    implicit none
    private
@@ -80,7 +80,7 @@ contains
       real(dp), allocatable :: sstar(:, :, :), e2(:), u2(:)
       real(dp) :: elcod(2, MAX_NODE), total
       type(rule_t) :: rules(MAX_NODE)
-      integer :: ie, nn, imat, ierr
+      integer :: ie, nn, imat, ierr, k
 
       call recover_patch_stresses(m, body, sstar, status)
       if (.not. status%ok()) return
@@ -89,16 +89,21 @@ contains
       do ie = 1, m%nelem
          nn = m%nnode_e(ie)
          imat = m%matno(ie)
-         elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
+         do k = 1, nn
+            elcod(:, k) = m%coord(:, m%lnods(k, ie))
+         end do
          ierr = -1
          if (rules(nn)%ngp == body%gp_start(ie + 1) - body%gp_start(ie)) then
-            call element_error_energy(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
-                                      m%mats(imat)%thick, rules(nn)%ngp, rules(nn)%shp, rules(nn)%der, rules(nn)%w, &
-                                      sstar(:, 1:nn, ie), body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1), &
+            call element_error_energy(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, &
+                                      m%mats(imat)%poiss, m%mats(imat)%thick, rules(nn)%ngp, &
+                                      rules(nn)%shp, rules(nn)%der, rules(nn)%w, &
+                                      sstar(:, 1:nn, ie), &
+                                      body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1), &
                                       e2(ie), u2(ie), ierr)
          end if
          if (ierr /= 0) then
-            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (error estimate): no valid Gauss rule or det J <= 0')
+            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)// &
+                            ' (error estimate): no valid Gauss rule or det J <= 0')
             return
          end if
       end do
@@ -132,34 +137,39 @@ contains
       type(body_fields_t), intent(in) :: body
       real(dp), allocatable, intent(out) :: sstar(:, :, :)
       type(status_t), intent(inout) :: status
-      integer, allocatable :: slot(:, :), pstart(:), pelem(:), matslot(:, :), sstart(:)
-      real(dp), allocatable :: acc(:, :), acc2(:, :), sxy(:, :), ssig(:, :), wxy(:, :), wsg(:, :)
-      integer, allocatable :: cnt(:), cnt2(:), seen(:)
-      integer :: ie, k, ip, nslot, nmat, pass, maxpt, maxnn, npatch
+      integer, allocatable :: sstart(:)
+      real(dp), allocatable :: sxy(:, :), ssig(:, :)
+      integer :: ie
 
+      ! the Gauss-point stresses of the body fields themselves where every element samples them
+      ! (T3, Q4, Q8/Q9 on 2 x 2 points): no copy
+      do ie = 1, m%nelem
+         if (m%nnode_e(ie) >= 8 .and. body%gp_start(ie + 1) - body%gp_start(ie) /= 4) exit
+      end do
+      if (ie > m%nelem) then
+         call recover_from_samples(m, body, body%gp_start, body%xygp, body%sig_gp, sstar)
+         return
+      end if
       call sample_stresses(m, body, sstart, sxy, ssig, status)
       if (.not. status%ok()) return
+      call recover_from_samples(m, body, sstart, sxy, ssig, sstar)
+   end subroutine recover_patch_stresses
 
-      ! one recovered value per (node, material): the slots
-      nmat = max(1, m%nmats)
-      if (m%nelem > 0) nmat = max(nmat, maxval(m%matno))
+   !> recover_patch_stresses from the samples sxy, ssig (sstart: the first of each element).
+   subroutine recover_from_samples(m, body, sstart, sxy, ssig, sstar)
+      type(model_t), intent(in) :: m
+      type(body_fields_t), intent(in) :: body
+      integer, contiguous, intent(in) :: sstart(:)
+      real(dp), contiguous, intent(in) :: sxy(:, :), ssig(:, :)
+      real(dp), allocatable, intent(out) :: sstar(:, :, :)
+      integer, allocatable :: slot(:, :), pstart(:), pelem(:)
+      real(dp), allocatable :: acc(:, :), acc2(:, :), wxy(:, :), wsg(:, :)
+      integer, allocatable :: cnt(:), cnt2(:), seen(:), wel(:), wnc(:), wcorn(:, :)
+      integer :: ie, k, ip, nslot, pass, maxpt, maxnn, npatch, maxpel
+
       maxnn = 1
       if (m%nelem > 0) maxnn = maxval(m%nnode_e(1:m%nelem))
-      allocate (matslot(nmat, m%npoin), slot(maxnn, m%nelem))
-      matslot = 0
-      slot = 0
-      nslot = 0
-      do ie = 1, m%nelem
-         do k = 1, m%nnode_e(ie)
-            ip = m%lnods(k, ie)
-            if (matslot(m%matno(ie), ip) == 0) then
-               nslot = nslot + 1
-               matslot(m%matno(ie), ip) = nslot
-            end if
-            slot(k, ie) = matslot(m%matno(ie), ip)
-         end do
-      end do
-      deallocate (matslot)
+      call value_slots(m, maxnn, slot, nslot)
       call corner_patches(m, pstart, pelem)
       ! work arrays for the largest patch
       maxpt = 1
@@ -181,7 +191,15 @@ contains
       ! pass 1: the interior patches with the elements' polynomial; pass 2: the
       ! slots no interior patch reached, from the patches around them (boundary
       ! ones too), with the elements' polynomial or, failing that, a smaller one
+      maxpel = 1
+      do ip = 1, m%npoin
+         maxpel = max(maxpel, pstart(ip + 1) - pstart(ip))
+      end do
+      allocate (wel(maxpel), wnc(maxpel), wcorn(4, maxpel))
       do pass = 1, 2
+         if (pass == 2) then
+            if (all(cnt > 0)) exit      ! every slot reached by an interior patch
+         end if
          do ip = 1, m%npoin
             if (pstart(ip + 1) == pstart(ip)) cycle
             call fit_node_patch(ip, pelem(pstart(ip):pstart(ip + 1) - 1), pass)
@@ -205,15 +223,15 @@ contains
 
       !> Fit the patch of corner node ip (its elements pel), one material at a
       !! time, and add the values at the elements' nodes.  Pass 1 fits only
-      !! interior patches (every edge at ip shared by two elements of the
-      !! material): a boundary patch fits from one side and, on a curved
-      !! boundary, from points near one line, where its polynomial is nearly
-      !! undetermined.
+      !! interior patches (both corner edges at ip of every element shared
+      !! with another element of the material in the patch): a boundary patch
+      !! fits from one side and, on a curved boundary, from points near one
+      !! line, where its polynomial is nearly undetermined.
       subroutine fit_node_patch(ip, pel, pass)
          integer, intent(in) :: ip, pel(:), pass
          real(dp) :: coef(MAX_TERMS, 4), h, centre(2)
-         integer :: imat, j, ie, k, n, npt, g0, g1, nterm, t, tries(3)
-         logical :: ok, need
+         integer :: imat, j, ie, k, n, npt, g0, nterm, t, tries(3), nsel, l, side, other
+         logical :: ok, need, shared
          centre = m%coord(:, ip)
          do j = 1, size(pel)
             imat = m%matno(pel(j))
@@ -221,37 +239,68 @@ contains
             if (j > 1) then
                if (any(m%matno(pel(1:j - 1)) == imat)) cycle
             end if
+            ! the elements of the material and their corners
+            nsel = 0
+            do k = j, size(pel)
+               ie = pel(k)
+               if (m%matno(ie) /= imat) cycle
+               nsel = nsel + 1
+               wel(nsel) = ie
+               wnc(nsel) = corner_count(m%nnode_e(ie))
+               wcorn(1:wnc(nsel), nsel) = m%lnods(1:wnc(nsel), ie)
+            end do
             if (pass == 2) then
                need = .false.
-               do k = j, size(pel)
-                  ie = pel(k)
-                  if (m%matno(ie) /= imat) cycle
+               do k = 1, nsel
+                  ie = wel(k)
                   if (any(cnt(slot(1:m%nnode_e(ie), ie)) == 0)) need = .true.
                end do
                if (.not. need) cycle
             else
-               do k = j, size(pel)
-                  ie = pel(k)
-                  if (m%matno(ie) /= imat) cycle
-                  if (.not. edges_shared(ip, ie, pel, imat)) exit
-               end do
-               if (k <= size(pel)) cycle
+               ! interior: both neighbours of ip along the corners of every element are corners
+               ! of another element of the selection
+               shared = .true.
+               elements: do k = 1, nsel
+                  n = findloc(wcorn(1:wnc(k), k), ip, 1)
+                  do side = -1, 1, 2
+                     l = n + side                          ! the neighbouring corner, cyclic
+                     if (l < 1) l = wnc(k)
+                     if (l > wnc(k)) l = 1
+                     other = wcorn(l, k)
+                     shared = .false.
+                     others: do l = 1, nsel
+                        if (l == k) cycle
+                        do g0 = 1, wnc(l)
+                           if (wcorn(g0, l) == other) then
+                              shared = .true.
+                              exit others
+                           end if
+                        end do
+                     end do others
+                     if (.not. shared) exit elements
+                  end do
+               end do elements
+               if (.not. shared) cycle
             end if
             npt = 0
             h = 0.0_dp
             nterm = MAX_TERMS
-            do k = j, size(pel)
-               ie = pel(k)
-               if (m%matno(ie) /= imat) cycle
+            do k = 1, nsel
+               ie = wel(k)
                nterm = min(nterm, recovery_terms(m%nnode_e(ie)))
                do n = 1, m%nnode_e(ie)
-                  h = max(h, abs(m%coord(1, m%lnods(n, ie)) - centre(1)), abs(m%coord(2, m%lnods(n, ie)) - centre(2)))
+                  l = m%lnods(n, ie)
+                  h = max(h, abs(m%coord(1, l) - centre(1)), abs(m%coord(2, l) - centre(2)))
                end do
-               g0 = sstart(ie)
-               g1 = sstart(ie + 1) - 1
-               wxy(:, npt + 1:npt + g1 - g0 + 1) = sxy(:, g0:g1)
-               wsg(:, npt + 1:npt + g1 - g0 + 1) = ssig(:, g0:g1)
-               npt = npt + g1 - g0 + 1
+               do g0 = sstart(ie), sstart(ie + 1) - 1
+                  npt = npt + 1
+                  wxy(1, npt) = sxy(1, g0)
+                  wxy(2, npt) = sxy(2, g0)
+                  wsg(1, npt) = ssig(1, g0)
+                  wsg(2, npt) = ssig(2, g0)
+                  wsg(3, npt) = ssig(3, g0)
+                  wsg(4, npt) = ssig(4, g0)
+               end do
             end do
             tries = [nterm, 3, 1]
             ok = .false.
@@ -262,58 +311,73 @@ contains
             end do
             if (.not. ok) cycle
             npatch = npatch + 1
-            do k = j, size(pel)
-               ie = pel(k)
-               if (m%matno(ie) /= imat) cycle
-               call add_values(ie, tries(t), coef, centre, h, pass)
+            do k = 1, nsel
+               call add_values(wel(k), tries(t), coef, centre, h, pass)
             end do
          end do
       end subroutine fit_node_patch
-
-      !> Both corner edges of element ie at its corner node ip are shared with
-      !! another element of material imat of the patch pel.
-      logical function edges_shared(ip, ie, pel, imat) result(shared)
-         integer, intent(in) :: ip, ie, pel(:), imat
-         integer :: nc, kc, side, other, k, ke, nce
-         nc = corner_count(m%nnode_e(ie))
-         kc = findloc(m%lnods(1:nc, ie), ip, 1)
-         shared = .true.
-         do side = -1, 1, 2
-            other = m%lnods(modulo(kc - 1 + side, nc) + 1, ie)
-            shared = .false.
-            do k = 1, size(pel)
-               ke = pel(k)
-               if (ke == ie .or. m%matno(ke) /= imat) cycle
-               nce = corner_count(m%nnode_e(ke))
-               if (any(m%lnods(1:nce, ke) == other)) then
-                  shared = .true.
-                  exit
-               end if
-            end do
-            if (.not. shared) return
-         end do
-      end function edges_shared
 
       !> The patch's values at the nodes of element ie, each node once per
       !! patch (npatch numbers the fitted patches).
       subroutine add_values(ie, nterm, coef, centre, h, pass)
          integer, intent(in) :: ie, nterm, pass
          real(dp), intent(in) :: coef(MAX_TERMS, 4), centre(2), h
-         integer :: k, is
+         real(dp) :: phi(MAX_TERMS), v(4), x, y
+         integer :: k, is, l
          do k = 1, m%nnode_e(ie)
             is = slot(k, ie)
             if (seen(is) == npatch) cycle
             seen(is) = npatch
+            if (pass == 2 .and. cnt(is) /= 0) cycle
+            ! the value there: patch_value's sum, inline
+            x = (m%coord(1, m%lnods(k, ie)) - centre(1))/h
+            y = (m%coord(2, m%lnods(k, ie)) - centre(2))/h
+            if (nterm == 4) then
+               v = coef(1, :) + x*coef(2, :) + y*coef(3, :) + (x*y)*coef(4, :)
+            else
+               call fit_basis_xy(nterm, x, y, phi)
+               v = phi(1)*coef(1, :)
+               do l = 2, nterm
+                  v = v + phi(l)*coef(l, :)
+               end do
+            end if
             if (pass == 1) then
-               acc(:, is) = acc(:, is) + patch_value(nterm, coef, centre, h, m%coord(:, m%lnods(k, ie)))
+               acc(:, is) = acc(:, is) + v
                cnt(is) = cnt(is) + 1
-            else if (cnt(is) == 0) then
-               acc2(:, is) = acc2(:, is) + patch_value(nterm, coef, centre, h, m%coord(:, m%lnods(k, ie)))
+            else
+               acc2(:, is) = acc2(:, is) + v
                cnt2(is) = cnt2(is) + 1
             end if
          end do
       end subroutine add_values
-   end subroutine recover_patch_stresses
+   end subroutine recover_from_samples
+
+   !> One recovered value per (node, material): the slot of every element
+   !! node (slot(k, ie) for node k of element ie; nslot slots in all).
+   subroutine value_slots(m, maxnn, slot, nslot)
+      type(model_t), intent(in) :: m
+      integer, intent(in) :: maxnn                         !! nodes of the largest element
+      integer, allocatable, intent(out) :: slot(:, :)      !! (maxnn, nelem)
+      integer, intent(out) :: nslot
+      integer, allocatable :: matslot(:, :)
+      integer :: nmat, ie, k, ip
+      nmat = max(1, m%nmats)
+      if (m%nelem > 0) nmat = max(nmat, maxval(m%matno))
+      allocate (matslot(nmat, m%npoin), slot(maxnn, m%nelem))
+      matslot = 0
+      slot = 0
+      nslot = 0
+      do ie = 1, m%nelem
+         do k = 1, m%nnode_e(ie)
+            ip = m%lnods(k, ie)
+            if (matslot(m%matno(ie), ip) == 0) then
+               nslot = nslot + 1
+               matslot(m%matno(ie), ip) = nslot
+            end if
+            slot(k, ie) = matslot(m%matno(ie), ip)
+         end do
+      end do
+   end subroutine value_slots
 
    !> The patches: the elements around every corner node, in CSR form
    !! (elements pelem(pstart(ip) : pstart(ip + 1) - 1) hold node ip as a corner).
@@ -357,7 +421,7 @@ contains
       type(status_t), intent(inout) :: status
       type(rule_t) :: r2(MAX_NODE)
       real(dp) :: elcod(2, MAX_NODE), eldis(2, MAX_NODE)
-      integer :: ie, nn, ngp, ierr, imat
+      integer :: ie, nn, ngp, ierr, imat, k
       logical, allocatable :: own(:)
       allocate (sstart(m%nelem + 1), own(m%nelem))
       sstart(1) = 1
@@ -370,20 +434,28 @@ contains
       if (.not. all(own)) call element_rules(m, 2, r2)
       do ie = 1, m%nelem
          if (own(ie)) then
-            sxy(:, sstart(ie):sstart(ie + 1) - 1) = body%xygp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1)
-            ssig(:, sstart(ie):sstart(ie + 1) - 1) = body%sig_gp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1)
+            associate (g0 => body%gp_start(ie), g1 => body%gp_start(ie + 1) - 1)
+               sxy(:, sstart(ie):sstart(ie + 1) - 1) = body%xygp(:, g0:g1)
+               ssig(:, sstart(ie):sstart(ie + 1) - 1) = body%sig_gp(:, g0:g1)
+            end associate
             cycle
          end if
          nn = m%nnode_e(ie)
          imat = m%matno(ie)
-         elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
-         eldis(:, 1:nn) = body%disp(:, m%lnods(1:nn, ie))
+         do k = 1, nn
+            elcod(:, k) = m%coord(:, m%lnods(k, ie))
+            eldis(:, k) = body%disp(:, m%lnods(k, ie))
+         end do
          ierr = -1
-         if (r2(nn)%ngp == 4) call point_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
-                                                  eldis(:, 1:nn), 4, r2(nn)%shp, r2(nn)%der, &
-                                                  sxy(:, sstart(ie):sstart(ie) + 3), ssig(:, sstart(ie):sstart(ie) + 3), ierr)
+         if (r2(nn)%ngp == 4) then
+            call point_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, &
+                                m%mats(imat)%poiss, eldis(:, 1:nn), 4, r2(nn)%shp, r2(nn)%der, &
+                                sxy(:, sstart(ie):sstart(ie) + 3), &
+                                ssig(:, sstart(ie):sstart(ie) + 3), ierr)
+         end if
          if (ierr /= 0) then
-            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (error estimate): its 2 x 2 Gauss points fail')
+            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)// &
+                            ' (error estimate): its 2 x 2 Gauss points fail')
             return
          end if
       end do
@@ -422,7 +494,9 @@ contains
       associate (pairs => m%contact%pairs)
          np = size(pairs)
          nif = max(1, maxval(pairs%iface))
-         if (allocated(cf%resolution)) deallocate (cf%resolution, cf%zone_width, cf%zone_pairs, cf%zone_jump)
+         if (allocated(cf%resolution)) then
+            deallocate (cf%resolution, cf%zone_width, cf%zone_pairs, cf%zone_jump)
+         end if
          allocate (cf%resolution(np), cf%zone_width(nif), cf%zone_pairs(nif), cf%zone_jump(nif))
          cf%resolution = 0.0_dp
          cf%zone_width = 0.0_dp
@@ -435,7 +509,8 @@ contains
             tmean = 0.0_dp
             do k = 1, n
                ! tangents of one orientation (a curved interface turns less than 180 degrees)
-               tmean = tmean + sign(1.0_dp, dot_product(pairs(idx(k))%t, pairs(idx(1))%t))*pairs(idx(k))%t
+               tmean = tmean + sign(1.0_dp, dot_product(pairs(idx(k))%t, pairs(idx(1))%t)) &
+                       *pairs(idx(k))%t
             end do
             if (norm2(tmean) > 0.0_dp) tmean = tmean/norm2(tmean)
             s = [(dot_product(pairs(idx(k))%position, tmean), k=1, n)]
@@ -452,8 +527,10 @@ contains
                   cf%zone_pairs(jf) = cf%zone_pairs(jf) + 1
                end if
                if (pmax <= 0.0_dp) cycle
-               if (k > 1) cf%resolution(j) = max(cf%resolution(j), abs(cf%pressure(j) - cf%pressure(idx(k - 1)))/pmax)
-               if (k < n) cf%resolution(j) = max(cf%resolution(j), abs(cf%pressure(idx(k + 1)) - cf%pressure(j))/pmax)
+               if (k > 1) cf%resolution(j) = max(cf%resolution(j), &
+                                                 abs(cf%pressure(j) - cf%pressure(idx(k - 1)))/pmax)
+               if (k < n) cf%resolution(j) = max(cf%resolution(j), &
+                                                 abs(cf%pressure(idx(k + 1)) - cf%pressure(j))/pmax)
             end do
             if (first > 0) then
                lo = s(first)

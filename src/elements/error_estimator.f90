@@ -37,6 +37,7 @@ module error_estimator
              gauss_volumes, element_error_energy, rule_shapes, point_stresses
 
    integer, parameter :: MAX_TERMS = 9   !! most terms of a recovery polynomial (Q9)
+   integer, parameter :: MAX_NODE_E = 9  !! most nodes of an element (Q9)
 
 contains
 
@@ -80,6 +81,9 @@ contains
    !! patch (centre, size h).  `ok` is false (coef zero) when there are fewer
    !! points than terms or the normal equations are singular to 1e-10 of
    !! their largest entry (points on a line for a 2-D polynomial, ...).
+   !! The normal equations of all four components are solved together (one
+   !! Cholesky factorization, four right-hand sides), in fixed-size work
+   !! arrays: no allocation per patch.
    pure subroutine patch_fit(nterm, npt, xy, sig, centre, h, coef, ok)
       integer, intent(in) :: nterm                 !! terms: 1, 3, 4, 8 or 9
       integer, intent(in) :: npt                   !! sampling points
@@ -89,53 +93,126 @@ contains
       real(dp), intent(in) :: h                    !! size of the patch (> 0) [length]
       real(dp), intent(out) :: coef(MAX_TERMS, 4)  !! coefficients of each component
       logical, intent(out) :: ok                   !! the fit is determined
-      real(dp) :: a(nterm, nterm), b(nterm, 4), phi(MAX_TERMS), row(nterm), rowb(4), f, amax
-      integer :: ip, i, k, ipiv
+      real(dp) :: a(MAX_TERMS, MAX_TERMS), b(4, MAX_TERMS), phi(MAX_TERMS), t(4), f, amax, hinv
+      integer :: ip, i, k, l
 
       coef = 0.0_dp
       ok = npt >= nterm .and. nterm >= 1 .and. h > 0.0_dp
       if (.not. ok) return
-      a = 0.0_dp
-      b = 0.0_dp
-      do ip = 1, npt
-         call fit_basis_xy(nterm, (xy(1, ip) - centre(1))/h, (xy(2, ip) - centre(2))/h, phi)
-         do i = 1, nterm
-            do k = i, nterm
-               a(k, i) = a(k, i) + phi(k)*phi(i)
+      hinv = 1.0_dp/h
+      if (nterm == 4) then
+         call normal_bilinear(npt, xy, sig, centre, hinv, a, b)
+      else
+         a(1:nterm, 1:nterm) = 0.0_dp
+         b(:, 1:nterm) = 0.0_dp
+         do ip = 1, npt
+            call fit_basis_xy(nterm, (xy(1, ip) - centre(1))*hinv, (xy(2, ip) - centre(2))*hinv, &
+                              phi)
+            do i = 1, nterm
+               do k = i, nterm
+                  a(k, i) = a(k, i) + phi(k)*phi(i)
+               end do
+               b(:, i) = b(:, i) + phi(i)*sig(:, ip)
             end do
-            b(i, :) = b(i, :) + phi(i)*sig(:, ip)
          end do
-      end do
+      end if
+      ! Cholesky factorization a = L L^T of the symmetric positive (semi)definite normal
+      ! matrix (lower triangle, in place); a pivot at or below 1e-10 of the largest entry
+      ! means the points do not determine the polynomial
+      amax = 0.0_dp
       do i = 1, nterm
-         a(i, i + 1:nterm) = a(i + 1:nterm, i)
+         amax = max(amax, maxval(abs(a(i:nterm, i))))
       end do
-      amax = maxval(abs(a))
-      ! Gaussian elimination with partial pivoting
       do k = 1, nterm
-         ipiv = k - 1 + maxloc(abs(a(k:nterm, k)), dim=1)
-         if (abs(a(ipiv, k)) <= 1.0e-10_dp*amax) then
+         f = a(k, k)
+         do l = 1, k - 1
+            f = f - a(k, l)*a(k, l)
+         end do
+         if (f <= 1.0e-10_dp*amax) then
             ok = .false.
             return
          end if
-         if (ipiv /= k) then
-            row = a(k, :)
-            a(k, :) = a(ipiv, :)
-            a(ipiv, :) = row
-            rowb = b(k, :)
-            b(k, :) = b(ipiv, :)
-            b(ipiv, :) = rowb
-         end if
+         a(k, k) = sqrt(f)
          do i = k + 1, nterm
-            f = a(i, k)/a(k, k)
-            a(i, k:nterm) = a(i, k:nterm) - f*a(k, k:nterm)
-            b(i, :) = b(i, :) - f*b(k, :)
+            f = a(i, k)
+            do l = 1, k - 1
+               f = f - a(i, l)*a(k, l)
+            end do
+            a(i, k) = f/a(k, k)
          end do
       end do
-      do k = nterm, 1, -1
-         b(k, :) = (b(k, :) - matmul(a(k, k + 1:nterm), b(k + 1:nterm, :)))/a(k, k)
+      ! L y = b, L^T x = y, the four components together
+      do k = 1, nterm
+         t = b(:, k)
+         do l = 1, k - 1
+            t = t - a(k, l)*b(:, l)
+         end do
+         b(:, k) = t/a(k, k)
       end do
-      coef(1:nterm, :) = b
+      do k = nterm, 1, -1
+         t = b(:, k)
+         do l = k + 1, nterm
+            t = t - a(l, k)*b(:, l)
+         end do
+         b(:, k) = t/a(k, k)
+      end do
+      coef(1:nterm, :) = transpose(b(:, 1:nterm))
    end subroutine patch_fit
+
+   !> The normal equations of the bilinear fit {1, x, y, xy} (Q4), the lower
+   !! triangle of a and the right-hand sides b, accumulated in scalars (the
+   !! same sums, in the same order, as the general loop of patch_fit).
+   pure subroutine normal_bilinear(npt, xy, sig, centre, hinv, a, b)
+      integer, intent(in) :: npt                          !! sampling points
+      real(dp), intent(in) :: xy(2, npt), sig(4, npt)     !! their coordinates and stresses
+      real(dp), intent(in) :: centre(2), hinv             !! centre of the patch, 1 / its size
+      real(dp), intent(inout) :: a(MAX_TERMS, MAX_TERMS)  !! normal matrix (lower triangle set)
+      real(dp), intent(inout) :: b(4, MAX_TERMS)          !! right-hand sides
+      real(dp) :: x, y, w, a11, a21, a31, a41, a22, a32, a42, a33, a43, a44
+      real(dp) :: b1(4), b2(4), b3(4), b4(4)
+      integer :: ip
+      a11 = 0.0_dp
+      a21 = 0.0_dp
+      a31 = 0.0_dp
+      a41 = 0.0_dp
+      a22 = 0.0_dp
+      a32 = 0.0_dp
+      a42 = 0.0_dp
+      a33 = 0.0_dp
+      a43 = 0.0_dp
+      a44 = 0.0_dp
+      b1 = 0.0_dp
+      b2 = 0.0_dp
+      b3 = 0.0_dp
+      b4 = 0.0_dp
+      do ip = 1, npt
+         x = (xy(1, ip) - centre(1))*hinv
+         y = (xy(2, ip) - centre(2))*hinv
+         w = x*y
+         a11 = a11 + 1.0_dp
+         a21 = a21 + x
+         a31 = a31 + y
+         a41 = a41 + w
+         a22 = a22 + x*x
+         a32 = a32 + y*x
+         a42 = a42 + w*x
+         a33 = a33 + y*y
+         a43 = a43 + w*y
+         a44 = a44 + w*w
+         b1 = b1 + sig(:, ip)
+         b2 = b2 + x*sig(:, ip)
+         b3 = b3 + y*sig(:, ip)
+         b4 = b4 + w*sig(:, ip)
+      end do
+      a(1:4, 1) = [a11, a21, a31, a41]
+      a(2:4, 2) = [a22, a32, a42]
+      a(3:4, 3) = [a33, a43]
+      a(4, 4) = a44
+      b(:, 1) = b1
+      b(:, 2) = b2
+      b(:, 3) = b3
+      b(:, 4) = b4
+   end subroutine normal_bilinear
 
    !> The recovered stresses of a patch fit at the point xy.
    pure function patch_value(nterm, coef, centre, h, xy) result(sig)
@@ -146,8 +223,12 @@ contains
       real(dp), intent(in) :: xy(2)                !! the point [length]
       real(dp) :: sig(4)                           !! (xx, yy, xy, zz) [stress]
       real(dp) :: phi(MAX_TERMS)
+      integer :: k
       call fit_basis_xy(nterm, (xy(1) - centre(1))/h, (xy(2) - centre(2))/h, phi)
-      sig = matmul(phi(1:nterm), coef(1:nterm, :))
+      sig = phi(1)*coef(1, :)
+      do k = 2, nterm
+         sig = sig + phi(k)*coef(k, :)
+      end do
    end function patch_value
 
    !> s^T D^-1 s: twice the complementary energy density of the stress s
@@ -176,7 +257,7 @@ contains
    !! recovery (`solid2d::element_stresses`).  ierr: 0, the first point with
    !! det J <= 0, or -1 for an unsupported element or rule.
    pure subroutine gauss_volumes(ntype, nnode, elcod, thick, ngaus, ngp, shape_gp, dvol, ierr)
-      integer, intent(in) :: ntype                   !! 1 plane stress, 2 plane strain, 3 axisymmetric
+      integer, intent(in) :: ntype                   !! 1 plane stress, 2 plane strain, 3 axisym.
       integer, intent(in) :: nnode                   !! nodes per element
       real(dp), intent(in) :: elcod(2, nnode)        !! nodal coordinates [length]
       real(dp), intent(in) :: thick                  !! thickness, plane problems [length]
@@ -231,7 +312,8 @@ contains
       call element_gauss_rule(nnode, ntype, ngaus, posgp, weigp, ngp)
       if (recovery_terms(nnode) == 0) ngp = 0
       do ig = 1, ngp
-         call shape_functions(nnode, posgp(1, ig), posgp(2, ig), shape_gp(:, ig), deriv_gp(:, :, ig))
+         call shape_functions(nnode, posgp(1, ig), posgp(2, ig), shape_gp(:, ig), &
+                              deriv_gp(:, :, ig))
       end do
    end subroutine rule_shapes
 
@@ -241,8 +323,9 @@ contains
    !! points: sig_zz = nu (sig_xx + sig_yy) in plane strain, the hoop stress
    !! from u_r / r in axisymmetry.  ierr: 0, or the first point with det J <= 0
    !! or (axisymmetric) r <= 0.
-   pure subroutine point_stresses(ntype, nnode, elcod, young, poiss, eldis, npt, shape_pt, deriv_pt, xy, sig, ierr)
-      integer, intent(in) :: ntype                      !! 1 plane stress, 2 plane strain, 3 axisymmetric
+   pure subroutine point_stresses(ntype, nnode, elcod, young, poiss, eldis, npt, shape_pt, &
+                                 deriv_pt, xy, sig, ierr)
+      integer, intent(in) :: ntype                      !! 1 plane stress, 2 plane strain, 3 axisym.
       integer, intent(in) :: nnode                      !! nodes per element
       real(dp), intent(in) :: elcod(2, nnode)           !! nodal coordinates [length]
       real(dp), intent(in) :: young                     !! Young's modulus [stress]
@@ -254,21 +337,28 @@ contains
       real(dp), intent(out) :: xy(2, npt)               !! positions of the points [length]
       real(dp), intent(out) :: sig(4, npt)              !! stresses there [stress]
       integer, intent(out) :: ierr                      !! status
-      real(dp) :: dmatx(4, 4), cartd(2, nnode), djacb, gradu(2, 2), eps(4)
+      real(dp) :: dmatx(4, 4), cartd(2, MAX_NODE_E), djacb, gradu(2, 2), eps(4)
       logical :: ok
-      integer :: ip
+      integer :: ip, k
       ierr = 0
       xy = 0.0_dp
       sig = 0.0_dp
       call d_matrix(ntype, young, poiss, dmatx)
       do ip = 1, npt
-         xy(:, ip) = matmul(elcod, shape_pt(:, ip))
-         call jacobian_2d(nnode, elcod, deriv_pt(:, :, ip), cartd, djacb, ok)
+         xy(:, ip) = 0.0_dp
+         do k = 1, nnode
+            xy(:, ip) = xy(:, ip) + elcod(:, k)*shape_pt(k, ip)
+         end do
+         call jacobian_2d(nnode, elcod, deriv_pt(:, :, ip), cartd(:, 1:nnode), djacb, ok)
          if (.not. ok .or. (ntype == 3 .and. xy(1, ip) <= 0.0_dp)) then
             ierr = ip
             return
          end if
-         gradu = matmul(eldis, transpose(cartd))          ! gradu(i, j) = d u_i / d x_j
+         gradu = 0.0_dp                                   ! gradu(i, j) = d u_i / d x_j
+         do k = 1, nnode
+            gradu(:, 1) = gradu(:, 1) + eldis(:, k)*cartd(1, k)
+            gradu(:, 2) = gradu(:, 2) + eldis(:, k)*cartd(2, k)
+         end do
          eps = [gradu(1, 1), gradu(2, 2), gradu(1, 2) + gradu(2, 1), 0.0_dp]
          if (ntype == 3) eps(4) = dot_product(eldis(1, :), shape_pt(:, ip))/xy(1, ip)
          sig(:, ip) = matmul(dmatx, eps)
@@ -281,8 +371,8 @@ contains
    !! functions, and ene2 = ||sigma_h||_E^2 (= ||u_h||_E^2 on the element),
    !! both by the element's Gauss rule (shape functions, derivatives and
    !! weights from `rule_shapes`), at whose points sigma_h is given.
-   pure subroutine element_error_energy(ntype, nnode, elcod, young, poiss, thick, ngp, shape_gp, deriv_gp, &
-                                        weigp, sig_star, sig_gp, err2, ene2, ierr)
+   pure subroutine element_error_energy(ntype, nnode, elcod, young, poiss, thick, ngp, shape_gp, &
+                                        deriv_gp, weigp, sig_star, sig_gp, err2, ene2, ierr)
       integer, intent(in) :: ntype                 !! 1 plane stress, 2 plane strain, 3 axisymmetric
       integer, intent(in) :: nnode                 !! nodes per element
       real(dp), intent(in) :: elcod(2, nnode)      !! nodal coordinates [length]
@@ -299,13 +389,20 @@ contains
       real(dp), intent(out) :: ene2                !! ||sigma_h||_E^2 [energy]
       integer, intent(out) :: ierr                 !! 0, or the first point with det J <= 0
       real(dp) :: s(4), xjacm(2, 2), djacb, dvol
-      integer :: ig
+      integer :: ig, k
 
       err2 = 0.0_dp
       ene2 = 0.0_dp
       ierr = 0
       do ig = 1, ngp
-         xjacm = matmul(deriv_gp(:, :, ig), transpose(elcod))
+         ! the Jacobian and sigma* at the point, summed node by node (no array temporaries)
+         xjacm = 0.0_dp
+         s = -sig_gp(:, ig)
+         do k = 1, nnode
+            xjacm(:, 1) = xjacm(:, 1) + deriv_gp(:, k, ig)*elcod(1, k)
+            xjacm(:, 2) = xjacm(:, 2) + deriv_gp(:, k, ig)*elcod(2, k)
+            s = s + sig_star(:, k)*shape_gp(k, ig)
+         end do
          djacb = xjacm(1, 1)*xjacm(2, 2) - xjacm(1, 2)*xjacm(2, 1)
          if (.not. djacb > 0.0_dp) then
             ierr = ig
@@ -316,7 +413,6 @@ contains
          else
             dvol = weigp(ig)*djacb*thick
          end if
-         s = matmul(sig_star, shape_gp(:, ig)) - sig_gp(:, ig)
          err2 = err2 + stress_energy(ntype, young, poiss, s)*dvol
          ene2 = ene2 + stress_energy(ntype, young, poiss, sig_gp(:, ig))*dvol
       end do

@@ -317,6 +317,69 @@ class Sizes(unittest.TestCase):
         hnew, n = ad.new_sizes(eta, np.ones(100), np.ones(100), 1e-4, max_elements=400)
         self.assertAlmostEqual(n, 400.0, delta=1e-9)
 
+    def test_growth_limit(self):
+        # a long way to the target (eta 0.1 -> 0.001) without a limit asks for many times the
+        # elements;
+        # with max_growth = 4 the step aims at a larger target of the same equidistributed shape
+        rng = np.random.default_rng(3)
+        eta = rng.uniform(1e-3, 3e-2, 300)
+        h = np.ones(300)
+        free, n_free = ad.new_sizes(eta, h, np.ones(300), 1e-3, shrink=(1e-9, 1e9))
+        self.assertGreater(n_free, 20 * 300)
+        lim, n_lim = ad.new_sizes(eta, h, np.ones(300), 1e-3, shrink=(1e-9, 1e9), max_growth=4.0)
+        self.assertAlmostEqual(n_lim, 4.0 * 300, delta=1e-6 * n_lim)
+        self.assertAlmostEqual(n_lim, np.sum(1 / lim ** 2), delta=1e-9 * n_lim)
+        ratio = lim / free                # one factor for every element: the same shape
+        np.testing.assert_allclose(ratio, ratio[0], rtol=1e-10)
+        self.assertGreater(ratio[0], 1.5)
+        # a mesh within the growth allowed is not touched by the limit
+        near, _ = ad.new_sizes(eta, h, np.ones(300), 0.5, shrink=(1e-9, 1e9))
+        near_lim, _ = ad.new_sizes(eta, h, np.ones(300), 0.5, shrink=(1e-9, 1e9), max_growth=4.0)
+        np.testing.assert_array_equal(near, near_lim)
+
+    def test_singular_rate(self):
+        # an element at a singular point (rate lambda = 1/2) keeps eta^2 s^(2 lambda) in its
+        # child at the point: its size makes that equal to the new elements' common error^2
+        eta = np.full(50, 1e-3)
+        eta[7] = 5e-2
+        rate = np.zeros(50)
+        rate[7] = 0.5
+        h = np.ones(50)
+        smooth, _ = ad.new_sizes(eta, h, np.ones(50), 0.01, shrink=(1e-9, 1e9), safety=1.0)
+        sing, _ = ad.new_sizes(eta, h, np.ones(50), 0.01, shrink=(1e-9, 1e9), safety=1.0, rate=rate)
+        per_element = eta[0] ** 2 * sing[0] ** 4          # a smooth Q4 element: eta^2 s^(2p+2)
+        self.assertAlmostEqual(eta[7] ** 2 * sing[7] ** 1, per_element, delta=1e-10 * per_element)
+        self.assertLess(sing[7], 0.1 * smooth[7])
+        np.testing.assert_array_equal(np.delete(sing, 7), np.delete(smooth, 7))
+
+
+@unittest.skipIf(shutil.which("gmsh") is None, "gmsh not installed")
+class QuadraticMeshes(unittest.TestCase):
+    def test_no_six_node_triangles(self):
+        # a .geo asking for second order without recombination: gmsh alone makes 6-node triangles
+        # (gmsh type 9, which kontakt2d does not read); through tools/adapt.py's meshing, with a
+        # graded size field too, only 8-node quadrilaterals come out
+        work = work_dir("adapt_quad_")
+        self.addCleanup(shutil.rmtree, work, ignore_errors=True)
+        geo = os.path.join(work, "tri.geo")
+        with open(geo, "w") as f:
+            f.write("Point(1) = {0, 0, 0, 0.3}; Point(2) = {2, 0, 0, 0.05};\n"
+                    "Point(3) = {0, 1.5, 0, 0.3};\n"
+                    "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};\n"
+                    "Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};\n"
+                    'Physical Surface("body") = {1};\n'
+                    "Mesh.ElementOrder = 2; Mesh.SecondOrderIncomplete = 1;\n")
+        plain = os.path.join(work, "plain.msh")
+        subprocess.run(["gmsh", "-2", "-format", "msh41", geo, "-o", plain], capture_output=True,
+                       check=True)
+        self.assertGreater(ad.msh_element_types(plain).get(9, 0), 10)
+        for factor in (1.0, 0.5):
+            msh = os.path.join(work, "adapt_%g.msh" % factor)
+            ad.gmsh_mesh(geo, msh, msh + ".log", factor=factor)
+            types = ad.msh_element_types(msh)
+            self.assertEqual(set(types), {16}, types)
+            self.assertGreater(types[16], 10)
+
 
 class GeoDeck(unittest.TestCase):
     @classmethod

@@ -428,26 +428,94 @@ def element_sizes(result):
     return h, p
 
 
-def new_sizes(eta, h, p, target, max_elements=None, shrink=(0.2, 2.0), safety=0.8):
+def new_sizes(eta, h, p, target, max_elements=None, shrink=(0.2, 2.0), safety=0.8, rate=None,
+              max_growth=None):
     """The element sizes of the next mesh: equidistribution of the error over the new elements.
 
     With eta_e^2 ~ h^(2p+2) in an element's area (eta_e^2 = c h^2p times its area h^2), a size
     s_e h_e there gives (1/s_e^2) elements of error^2 eta_e^2 s_e^(2p+2) each; the fewest
     elements with sum eta_e^2 s_e^2p = (safety target)^2 have every new element's error equal:
     s_e = (lam / eta_e^2)^(1/(2p+2)), lam^(p/(p+1)) = (safety target)^2 / sum eta_e^(2/(p+1)).
-    s is kept within `shrink` per step; with max_elements the sizes grow together until the
-    predicted count sum 1/s_e^2 fits.  Returns (new h_e, predicted element count)."""
+    `rate` (per element, default None: every element smooth) gives the exponent lambda_e of an
+    element at a singular point, where the solution goes like r^lambda: its error^2 is
+    concentrated at the point and falls only like h^(2 lambda), so the child at the point keeps
+    eta_e^2 s^(2 lambda) and s_e = (lam / eta_e^2)^(1/(2 lambda)) there (lambda = 0 or NaN:
+    smooth).  s is kept within `shrink` per step.  With max_growth the predicted element count
+    sum 1/s_e^2 is at most max_growth times the present one: the step aims at a larger target
+    (found by bisection) whose equidistributed mesh fits, so a long way to the target is made in
+    several meshes of the same shape rather than one.  With max_elements the sizes grow together
+    until the predicted count fits.  Returns (new h_e, predicted element count)."""
     pe = float(np.max(p))          # one order for the mesh (gmsh meshes with one order)
-    t2 = (safety * target) ** 2
     eta = np.maximum(eta, 1e-300)
-    lam = (t2 / np.sum(eta ** (2.0 / (pe + 1.0)))) ** ((pe + 1.0) / pe)
-    s = (lam / eta ** 2) ** (1.0 / (2.0 * pe + 2.0))
-    s = np.clip(s, shrink[0], shrink[1])
+    expo = np.full(len(eta), 1.0 / (2.0 * pe + 2.0))
+    if rate is not None:
+        lam_s = np.nan_to_num(np.asarray(rate, float), nan=0.0)
+        sing = (lam_s > 0.0) & (lam_s < pe)
+        expo[sing] = 1.0 / (2.0 * lam_s[sing])
+
+    def sizes(t):
+        lam = ((safety * t) ** 2 / np.sum(eta ** (2.0 / (pe + 1.0)))) ** ((pe + 1.0) / pe)
+        return np.clip((lam / eta ** 2) ** expo, shrink[0], shrink[1])
+
+    s = sizes(target)
     n_new = float(np.sum(1.0 / s ** 2))
+    if max_growth and n_new > max_growth * len(eta):
+        lo, hi = math.log(target), math.log(max(target, 1.0) * 1e6)
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if np.sum(1.0 / sizes(math.exp(mid)) ** 2) > max_growth * len(eta):
+                lo = mid
+            else:
+                hi = mid
+        s = sizes(math.exp(hi))
+        n_new = float(np.sum(1.0 / s ** 2))
     if max_elements and n_new > max_elements:
         s *= math.sqrt(n_new / max_elements)
         n_new = float(np.sum(1.0 / s ** 2))
     return s * h, n_new
+
+
+def singular_rates(result, lam=0.5):
+    """The exponent lambda of the singular points of the solution the contact shows, per element
+    (0 elsewhere): an interface whose contact zone ends at its largest pressures -- the pressure
+    of the outermost closed pair at least the mean of the closed pairs', a flat punch's edge where
+    p ~ r^-1/2 and u ~ r^1/2 (Johnson 1985, sec. 2.8), not Hertz's edge where p falls to zero --
+    gives lambda = 1/2 to the elements at the nodes of that pair (node a, and node b or the nodes
+    of surface B under it).  Re-entrant corners of the bodies are not detected."""
+    m = result.mesh
+    rate = np.zeros(len(m.element_nodes))
+    c = result.contact
+    if c is None:
+        return rate
+    last = result.last
+    pr = last.contact("pressure")
+    closed = last.contact("normal_state") > 0
+    pos = c.position
+    nodes = set()
+    for itf in np.unique(c.interface):
+        k = np.where(c.interface == itf)[0]
+        axis = 0 if np.ptp(pos[k, 0]) >= np.ptp(pos[k, 1]) else 1
+        k = k[np.argsort(pos[k, axis])]
+        kc = k[closed[k]]
+        if len(kc) < 2:
+            continue
+        mean = float(np.mean(pr[kc]))
+        for j in (kc[0], kc[-1]):
+            if mean <= 0.0 or pr[j] < mean:
+                continue
+            nodes.add(int(c.node_a[j]) - 1)
+            if "master_nodes" in c:
+                nodes.update(int(v) - 1 for v, w in zip(c.master_nodes[j], c.master_weights[j])
+                             if v > 0 and w > 0)
+            else:
+                nodes.add(int(c.node_b[j]) - 1)
+    if not nodes:
+        return rate
+    sel = np.array(sorted(nodes))
+    for e in range(len(rate)):
+        if np.isin(m.connectivity[e, :m.element_nodes[e]] - 1, sel).any():
+            rate[e] = lam
+    return rate
 
 
 def traction_sizes(result, target):
@@ -549,7 +617,7 @@ def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh"):
     if shutil.which(gmsh) is None:
         raise AdaptError("gmsh is needed to remesh %s (Debian package gmsh)" % geo)
     wrapper = os.path.splitext(msh)[0] + "_mesh.geo"
-    lines = ['Include "%s";' % os.path.abspath(geo)]
+    lines = ['Include "%s";' % os.path.abspath(geo)] + QUADRATIC_ALL_QUADS
     if factor is not None:
         lines.append("Mesh.MeshSizeFactor = %.10g;" % factor)
     if pos is not None:
@@ -562,14 +630,54 @@ def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh"):
     rc, wall, cpu = run_cpu([gmsh, "-2", "-format", "msh41", wrapper, "-o", msh], log)
     if rc != 0 or not os.path.isfile(msh):
         raise AdaptError("gmsh failed on %s (exit code %d; its output: %s)" % (wrapper, rc, log))
+    bad = {t: n for t, n in msh_element_types(msh).items() if t not in MSH_SURFACE_TYPES_READ}
+    if bad:
+        what = ", ".join("%d elements of gmsh type %d" % (n, t) for t, n in sorted(bad.items()))
+        raise AdaptError("%s: gmsh made %s from %s, which kontakt2d does not read (it reads 3- and "
+                         "4-node, 8- and 9-node elements; docs/adaptivity.md, \"Quadratic meshes\")"
+                         % (msh, what, geo))
     return cpu
 
 
+# gmsh's 2-D element types kontakt2d reads: 3-node triangle, 4-node quadrilateral, 8- and 9-node
+# quadrilaterals (src/io/gmsh_reader.f90); a 6-node triangle (type 9) is not among them
+MSH_SURFACE_TYPES_READ = {2, 3, 16, 10}
+# Lines added after the .geo: a quadratic mesh is made all quadrilaterals, gmsh's blossom
+# recombination of everything with the full-quad option (Mesh.RecombinationAlgorithm = 3),
+# whatever the .geo asks; otherwise blossom leaves a few triangles on graded meshes, which second
+# order makes 6-node triangles.  A linear mesh keeps the .geo's own choices.
+QUADRATIC_ALL_QUADS = ["If (Mesh.ElementOrder > 1)", "  Mesh.RecombineAll = 1;",
+                       "  Mesh.RecombinationAlgorithm = 3;", "EndIf"]
+
+
+def msh_element_types(path):
+    """{gmsh element type: count} of the 2-D elements of a .msh file (format 4.1, ASCII)."""
+    out = {}
+    with open(path) as f:
+        for line in f:
+            if line.strip() == "$Elements":
+                nblocks = int(f.readline().split()[0])
+                for _ in range(nblocks):
+                    dim, _tag, ety, n = (int(v) for v in f.readline().split())
+                    for _ in range(n):
+                        f.readline()
+                    if dim == 2:
+                        out[ety] = out.get(ety, 0) + n
+                break
+    return out
+
+
 # ------------------------------------------------------------------------------- the drivers
-def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8, log=print):
+MAX_GROWTH = 4.0      # elements of an adaptive mesh over the last one's, at most (predicted)
+
+
+def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8, log=print,
+                    max_growth=MAX_GROWTH, singular=True):
     """Remesh the .geo of a MESH deck until the estimated error is below `target` or the next
-    mesh would exceed `max_dofs`: adaptively from the indicators (a size field), or with
-    uniform=True by halving the .geo's sizes at each step.  Returns the rows of the table."""
+    mesh would exceed `max_dofs`: adaptively from the indicators (a size field; each mesh at most
+    about `max_growth` times the elements of the last, None: no limit; with `singular` the
+    contact's singular edges refined at their own rate, singular_rates), or with uniform=True by
+    halving the .geo's sizes at each step.  Returns the rows of the table."""
     kind, msh, geo = deck_kind(deck)
     if kind != "mesh" or geo is None:
         raise AdaptError("%s: a MESH deck with the .geo of its mesh beside it is needed for remeshing" % deck)
@@ -586,13 +694,21 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
         base = os.path.join(wdir, "%s_%02d" % (name, k))
         cpu_mesh = gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos,
                              factor=0.5 ** k if uniform else None)
-        # the predicted size of a mesh is approximate: one that came out beyond the budget is
-        # made again with all sizes grown by the excess (at most four times)
+        # the predicted size of a mesh is approximate: one that came out beyond the budget, or
+        # beyond 1.25 times the growth allowed, is made again with all sizes grown by the excess
+        # (at most four times)
         for _ in range(4):
             dofs = 2 * msh_nodes(base + ".msh")
-            if pos is None or not max_dofs or dofs <= max_dofs:
+            if pos is None:
                 break
-            hnew *= 1.05 * math.sqrt(dofs / max_dofs)
+            want, limit = math.inf, math.inf          # the DOFs aimed at, and allowed
+            if max_dofs:
+                want, limit = max_dofs / 1.05 ** 2, max_dofs
+            if max_growth and 1.25 * max_growth * rows[-1]["dofs"] < limit:
+                want, limit = max_growth * rows[-1]["dofs"], 1.25 * max_growth * rows[-1]["dofs"]
+            if dofs <= limit:
+                break
+            hnew *= math.sqrt(dofs / want)
             write_size_view(pos, r, hnew)
             cpu_mesh += gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos)
         if max_dofs and 2 * msh_nodes(base + ".msh") > max_dofs:
@@ -621,7 +737,9 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
             row["stop"] = "budget"          # this mesh already has the DOFs allowed
             break
         t0 = time.process_time()
-        hnew, n_new = new_sizes(eta, h, p, target, max_el)
+        rate = singular_rates(r) if singular else None
+        row["singular_elements"] = int(np.count_nonzero(rate)) if rate is not None else 0
+        hnew, n_new = new_sizes(eta, h, p, target, max_el, rate=rate, max_growth=max_growth)
         hnew, row["traction_limited"] = limit_by_tractions(r, hnew, h, target)
         pos = base + "_size.pos"
         write_size_view(pos, r, hnew)
@@ -686,7 +804,7 @@ def richardson_table(rows):
 # ------------------------------------------------------------------------------- the report
 COLUMNS = ["method", "step", "elements", "dofs", "estimated_error", "source", "cpu_solve", "cpu_mesh",
            "cpu_cumulative", "peak_pressure", "width", "approach", "von_mises", "slip_share", "scheme",
-           "law_drift", "residual", "traction_limited", "exit"]
+           "law_drift", "residual", "traction_limited", "singular_elements", "exit"]
 
 
 def cumulate(rows):
