@@ -25,7 +25,8 @@ program bench_solvers
    use dof_map, only: dof_map_t
    use equation_numbering, only: numbering_report_t, number_equations
    use linear_solver, only: linear_solver_t
-   use solver_factory, only: create_solver
+   use solver_factory, only: create_solver, plan_run
+   use run_plan, only: run_plan_t
    use assembly, only: coupling_t, assemble_bodies, element_equations
    use solid2d, only: element_stiffness
    use model, only: MAX_NODE
@@ -41,6 +42,8 @@ program bench_solvers
    type(dof_map_t) :: map
    type(numbering_report_t) :: rep
    type(status_t) :: st
+   type(run_plan_t) :: plan
+   character(len=:), allocatable :: plan_name
    type(coupling_t) :: coup
    class(linear_solver_t), allocatable :: s
    integer, allocatable :: xadj(:), adjncy(:), nolinks(:, :)
@@ -82,7 +85,8 @@ program bench_solvers
    allocate (nolinks(2, 0))
 
    call system_clock(c0, rate)
-   call number_equations(m, a_solver, nolinks, map, xadj, adjncy, rep, st)
+   call plan_run(m, trim(a_solver), plan, plan_name)   ! the ordering as a run would choose it
+   call number_equations(m, plan, nolinks, map, xadj, adjncy, rep, st)
    call create_solver(a_solver, s, st)
    call check('create_solver')
    if (option >= 0) then
