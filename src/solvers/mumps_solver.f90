@@ -21,28 +21,9 @@
 !! Ordering.  AMD, METIS's nested dissection, SCOTCH or PORD: `mumps_ordering`, which also
 !! says which is the default and why.
 !!
-!! Why SYM = 2 and not SYM = 1.  The systems are symmetric positive definite
-!! when the model is restrained, and that is exactly what must be checked:
-!! MUMPS's SPD mode (SYM = 1, LDL^T without pivoting) accepts the round-off
-!! pivot of a rigid-body mode without a word (measured with MUMPS 5.5.1: a
-!! free chain of springs factorizes with INFOG(1) = 0 and no negative pivot),
-!! and it ignores the null-pivot detection ICNTL(24).  The general symmetric
-!! mode (SYM = 2) with threshold pivoting (CNTL(1) = 0.01, the default)
-!! detects null pivot rows and lists their equations, and costs the same on
-!! an SPD matrix (plane-strain Q4 block, 5e5 equations, the same ordering:
-!! same factor size, factorization time within the noise of the run).
-!!
-!! The singularity test is the skyline solver's.  The matrix is scaled
-!! symmetrically to a unit diagonal, D^(-1/2) K D^(-1/2) with D = diag(K)
-!! (ICNTL(8) = -1, COLSCA = ROWSCA = 1/sqrt(k_jj)), and a pivot row is null
-!! when its largest entry is at most `pivot_tol` (CNTL(3) = -pivot_tol, an
-!! absolute threshold on the scaled matrix, ICNTL(24) = 1).  For a diagonal
-!! pivot that is d_j <= pivot_tol * k_jj, the skyline criterion; the first
-!! null pivot row names the failed equation (PIVNUL_LIST).  A zero or
-!! negative diagonal (which no positive definite matrix has, and which the
-!! scaling cannot take) fails before MUMPS is called, naming its equation;
-!! negative pivots that MUMPS finds with a positive diagonal (INFOG(12), the
-!! inertia) fail without an equation, which MUMPS cannot tell.
+!! Why SYM = 2 (general symmetric) and not the SPD mode, and the singularity test (the
+!! skyline solver's, on the matrix scaled to a unit diagonal): the submodule
+!! mumps_solver_factorize.
 !!
 !! Ref: P. R. Amestoy, I. S. Duff, J. Koster, J.-Y. L'Excellent, "A fully
 !!      asynchronous multifrontal solver using distributed dynamic
@@ -122,7 +103,7 @@ module mumps_solver
    end type mumps_solver_t
 
    interface
-      !> Numerical factorization of the assembled values (see the module header for what
+      !> Numerical factorization of the assembled values (the submodule's header says what
       !! fails and how).  A workspace error of MUMPS is retried with a doubled relaxation
       !! ICNTL(14), up to MAX_ATTEMPTS times.  (submodule mumps_solver_factorize)
       module subroutine mumps_factorize(this, status)
@@ -286,8 +267,7 @@ contains
       call cpu_time(t0)
       if (this%nschur > 0) then
          call metis_perm_in(this%cp, this%mumps%id%irn, &
-            this%mumps%id%listvar_schur(1:this%nschur), &
-                            perm_in, status)
+                            this%mumps%id%listvar_schur(1:this%nschur), perm_in, status)
       else
          call metis_perm_in(this%cp, this%mumps%id%irn, [integer ::], perm_in, status)
       end if

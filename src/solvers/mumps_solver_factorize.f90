@@ -1,7 +1,33 @@
-!> The numerical factorization of the MUMPS solver (`mumps_solver`, whose header says what
-!! fails and how): the checks before MUMPS is called (values outside the pattern, NaN or Inf,
-!! a zero or negative diagonal), the symmetric scaling to a unit diagonal, the retries after
-!! a workspace error, and MUMPS's verdict (null pivot rows, negative pivots).
+!> The numerical factorization of the MUMPS solver (`mumps_solver`): the checks before MUMPS
+!! is called (values outside the pattern, NaN or Inf, a zero or negative diagonal), the
+!! symmetric scaling to a unit diagonal, the retries after a workspace error, and MUMPS's
+!! verdict (null pivot rows, negative pivots).
+!!
+!! Why SYM = 2 and not SYM = 1.  The systems are symmetric positive definite
+!! when the model is restrained, and that is exactly what must be checked:
+!! MUMPS's SPD mode (SYM = 1, LDL^T without pivoting) accepts the round-off
+!! pivot of a rigid-body mode without a word (measured with MUMPS 5.5.1: a
+!! free chain of springs factorizes with INFOG(1) = 0 and no negative pivot),
+!! and it ignores the null-pivot detection ICNTL(24).  The general symmetric
+!! mode (SYM = 2) with threshold pivoting (CNTL(1) = 0.01, the default)
+!! detects null pivot rows and lists their equations, and costs the same on
+!! an SPD matrix (plane-strain Q4 block, 5e5 equations, the same ordering:
+!! same factor size, factorization time within the noise of the run).
+!!
+!! The singularity test is the skyline solver's.  The matrix is scaled
+!! symmetrically to a unit diagonal, D^(-1/2) K D^(-1/2) with D = diag(K)
+!! (ICNTL(8) = -1, COLSCA = ROWSCA = 1/sqrt(k_jj)), and a pivot row is null
+!! when its largest entry is at most `pivot_tol` (CNTL(3) = -pivot_tol, an
+!! absolute threshold on the scaled matrix, ICNTL(24) = 1).  For a diagonal
+!! pivot that is d_j <= pivot_tol * k_jj, the skyline criterion; the first
+!! null pivot row names the failed equation (PIVNUL_LIST).  A zero or
+!! negative diagonal (which no positive definite matrix has, and which the
+!! scaling cannot take) fails before MUMPS is called, naming its equation;
+!! negative pivots that MUMPS finds with a positive diagonal (INFOG(12), the
+!! inertia) fail without an equation, which MUMPS cannot tell.
+!!
+!! Ref: MUMPS 5.5 Users' guide, ICNTL(8), (14), (24), CNTL(1), (3), INFOG(12), (28),
+!!      PIVNUL_LIST.
 submodule(mumps_solver) mumps_solver_factorize
    implicit none
 
@@ -12,7 +38,7 @@ submodule(mumps_solver) mumps_solver_factorize
 
 contains
 
-   !> Numerical factorization of the assembled values (see the module header
+   !> Numerical factorization of the assembled values (see the header above
    !! for what fails and how).  A workspace error of MUMPS is retried with a
    !! doubled relaxation ICNTL(14), up to MAX_ATTEMPTS times.
    module subroutine mumps_factorize(this, status)
