@@ -40,11 +40,6 @@ EXEMPT = {
     "body_fields": "covered by test_error_estimator, which builds the fields it estimates from",
     "error_estimate": "covered by test_error_estimator and tests/validation "
                       "(test_validation_error_estimate)",
-    "contact_assembly": "TODO: suite missing (reached end to end through test_incremental, "
-                        "test_increment_attempt and the contact validation suites only)",
-    # contact
-    "contact_definition": "TODO: suite missing (reached through model_input: test_incremental, "
-                          "the validation suites and tests/decks/bad only)",
     # solvers
     "linear_solver": "covered by test_skyline_solver, test_dense_solver, test_umfpack_solver and "
                      "test_mumps_solver: the abstract solver and the checks the solvers share",
@@ -52,14 +47,6 @@ EXEMPT = {
     "condensed_system": "covered by test_contact_system (one of the contact systems it compares)",
     "contact_dense": "covered by test_contact_system (the dense contact block it solves)",
     "contact_system_factory": "covered by test_contact_system, which makes its systems through it",
-    "contact_projection": "TODO: suite missing (reached through contact_dense in "
-                          "test_contact_system, and test_incremental)",
-    "mumps_instance": "TODO: suite missing (reached through test_mumps_solver, builds with MUMPS)",
-    "mumps_schur_system": "TODO: suite missing (reached through test_contact_system, builds with "
-                          "MUMPS)",
-    # io
-    "deck_contact": "TODO: suite missing (the CONTACT and TIES cards, reached through "
-                    "test_deck_reader and tests/decks/bad only)",
     # driver
     "equation_numbering": "covered by test_renumber, which numbers the equations through it",
     "model_input": "covered by test_incremental and the validation suites, which read their "
