@@ -2,8 +2,9 @@
 """The module-suite map: every module of src/ with logic has its unit suite at the path a newcomer
 would look for it, tests/unit/<layer>/test_<module>.pf, or is named below with a reason.
 
-A module is src/<layer>/<module>.f90 (or .F90) holding `module <module>`; src/main.f90 is the
-program, not a module, and is left out. A module *has logic* when it defines at least one
+A module is src/<layer>/<module>.f90 (or .F90) holding `module <module>`; a submodule file
+(`submodule (<module>) <name>` in <name>.f90) is tested through its module's suite, which must
+exist; src/main.f90 is the program, not a module, and is left out. A module *has logic* when it defines at least one
 procedure body: a `subroutine` or `function` statement outside an `interface ... end interface`
 block. So modules of kinds and parameters (kinds, version), of type declarations without
 type-bound procedures (records), and of interface blocks only (bindings to C or Fortran libraries
@@ -70,6 +71,8 @@ PROC_RE = re.compile(
 INTERFACE_START = re.compile(r"^\s*(?:abstract\s+)?interface\b", re.I)
 INTERFACE_END = re.compile(r"^\s*end\s+interface\b", re.I)
 MODULE_RE = re.compile(r"^\s*module\s+(\w+)\s*$", re.I)
+# `submodule (ancestor[:parent]) name`: its procedures are the ancestor module's, tested by its suite
+SUBMODULE_RE = re.compile(r"^\s*submodule\s*\(\s*(\w+)\s*(?::\s*\w+\s*)?\)\s*(\w+)\s*$", re.I)
 
 
 def strip_comment(line):
@@ -93,6 +96,27 @@ def has_logic(path):
             if depth == 0 and PROC_RE.match(code) and not re.match(r"^\s*end\b", code, re.I):
                 return True
     return False
+
+
+def submodules(root):
+    """(layer, submodule, ancestor, path) of every submodule file src/<layer>/<submodule>.f90."""
+    out = []
+    src = os.path.join(root, "src")
+    for layer in sorted(os.listdir(src)):
+        ldir = os.path.join(src, layer)
+        if not os.path.isdir(ldir):
+            continue
+        for name in sorted(os.listdir(ldir)):
+            stem, ext = os.path.splitext(name)
+            if ext.lower() != ".f90":
+                continue
+            path = os.path.join(ldir, name)
+            with open(path, errors="replace") as f:
+                for m in map(SUBMODULE_RE.match, f):
+                    if m and m.group(2).lower() == stem.lower():
+                        out.append((layer, stem.lower(), m.group(1).lower(), path))
+                        break
+    return out
 
 
 def modules(root):
@@ -158,6 +182,20 @@ def main():
             state = "no logic"
         if args.list:
             print(f"src/{layer}/{os.path.basename(path):28s} {state}")
+    # a submodule is tested through its ancestor module's suite: that suite must exist
+    for layer, sub, anc, path in submodules(root):
+        where = [(lay, p) for lay, m, p in mods if m == anc]
+        if not where:
+            problems.append(f"src/{layer}/{os.path.basename(path)}: submodule {sub} of {anc}, "
+                            "which is no module of src/<layer>/")
+            continue
+        alay = where[0][0]
+        suite = SUITE_OF.get(anc, f"test_{anc}.pf")
+        if not os.path.isfile(os.path.join(unit, alay, suite)):
+            problems.append(f"src/{layer}/{os.path.basename(path)}: submodule {sub} has logic and "
+                            f"its module {anc} has no suite tests/unit/{alay}/{suite}")
+        elif args.list:
+            print(f"src/{layer}/{os.path.basename(path):28s} submodule: tests/unit/{alay}/{suite}")
     for mod in sorted(set(EXEMPT) - known):
         problems.append(f"{mod}: exempted but no such module in src/<layer>/; remove its exemption")
     for mod in sorted(set(SUITE_OF) - known):
