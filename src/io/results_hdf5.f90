@@ -33,6 +33,7 @@
 !!     call rf%create(path, m, body, status)          ! the mesh, status "running"
 !!     call rf%write_run_info(info, status)           ! root attributes of the run
 !!     call rf%write_contact_definition(c, info, status)
+!!     call rf%write_header(m, info, numbering, status)  ! the rest of the listing's header
 !!     do accepted step
 !!        call rf%write_increment(step, body, status, contact)   ! one group, flushed
 !!     end do
@@ -51,7 +52,8 @@
 !! is never allowed to fill under HDF5:
 !!  - `create` holds a reserve file beside the result file (`NAME.reserve`,
 !!    RESERVE_BYTES allocated on the disk, module disk_reserve); at the end of the
-!!    run (`set_status`, `close`) it is deleted, which gives the last status,
+!!    run (`write_summary`, `set_status`, `close`) it is deleted, which gives the summary,
+!!    the last status,
 !!    flush and close their room whatever the listing took meanwhile;
 !!  - before the mesh, the contact definition and every increment group,
 !!    `probe_room` allocates the bytes the group will take (its arrays plus a
@@ -72,6 +74,7 @@ module results_hdf5
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, cycle_table_t
+   use records, only: numbering_report_t
    use run_plan, only: solver_name, choice_name, system_name, ordering_name, scheme_name, CHOICE_AUTOMATIC
    use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, law_name, &
                             matching_name, rigid_shape_name, MAX_PAIR_NODES
@@ -113,6 +116,7 @@ module results_hdf5
       procedure :: increments_completed => results_increments_completed
       procedure :: write_cycles => results_write_cycles
       procedure :: write_summary => results_write_summary
+      procedure :: write_header => results_write_header
    end type results_file_t
 
    logical :: library_open = .false.
@@ -598,6 +602,36 @@ contains
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write /cycles in '//this%path)
    end subroutine results_write_cycles
 
+   !> Root attributes of the figures of the listing's header not written elsewhere: the counts
+   !! (materials, deck increments, equations, restrained dofs) and what the equation numbering
+   !! did (why its order; the profile in the user's order and in the order used: skyline
+   !! length, mean and largest column height).
+   subroutine results_write_header(this, m, info, numbering, status)
+      class(results_file_t), intent(inout) :: this
+      type(model_t), intent(in) :: m
+      type(run_info_t), intent(in) :: info
+      type(numbering_report_t), intent(in) :: numbering
+      type(status_t), intent(inout) :: status
+      integer :: err
+      if (.not. this%opened) return
+      err = 0
+      call attr_int(this%fid, 'materials', m%nmats, err)
+      call attr_int(this%fid, 'deck_increments', m%nincs, err)
+      call attr_int(this%fid, 'equations', info%neq, err)
+      call attr_int(this%fid, 'restrained_dofs', info%nres, err)
+      if (allocated(numbering%reason)) then
+         if (len(numbering%reason) > 0) then
+            call attr_string(this%fid, 'ordering_reason', numbering%reason, err)
+         end if
+      end if
+      call attr_real1(this%fid, 'profile_user_order', [real(numbering%profile_before, dp), &
+                      numbering%mean_before, real(numbering%max_before, dp)], err)
+      call attr_real1(this%fid, 'profile_used', [real(numbering%profile_after, dp), &
+                      numbering%mean_after, real(numbering%max_after, dp)], err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the header attributes to '// &
+                                   this%path)
+   end subroutine results_write_header
+
    !> /summary: the closing summary of the run as the listing and the terminal print it
    !! (run_summary_t, docs/results-format.md "Run summary"): the load stages, the interface at the
    !! end, the error estimate, the energy dissipated, the pretension sections, the doubts, the
@@ -609,12 +643,9 @@ contains
       integer(hid_t) :: gid
       integer :: err, e
       if (.not. this%opened) return
-      call probe_room(this, 65536_i8 + 64_i8*size(s%first, kind=i8), err)
-      if (err /= 0) then
-         call status%set(STAT_IO, 'no room on the disk for the summary of the run in '//this%path// &
-                         ': is the disk full?')
-         return
-      end if
+      ! the end of the run: the reserve (1 MB) gives the summary (a few kB, 56 bytes a load stage)
+      ! and then the status their room, whatever the listing took meanwhile
+      call release_reserve(this)
       err = 0
       call h5gcreate_f(this%fid, 'summary', gid, e)
       if (e < 0) then

@@ -42,7 +42,8 @@ module run_report
                       cycle_table_t, numbering_report_t
    use results_hdf5, only: results_file_t
    use run_summary, only: run_summary_t, summarise_run, write_run_summary, write_dissipation
-   use pretension_report, only: list_pretension_sections, list_pretension_step, list_pretension_summary
+   use pretension_report, only: list_pretension_sections, list_pretension_step, &
+                                list_pretension_summary
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
                       list_progress, list_completed, list_failed, list_doubts, close_listing, &
                       list_reversals, list_numbering
@@ -76,7 +77,7 @@ module run_report
       logical :: quiet = .false.                    !! no terminal output except errors
       logical :: set_up_failed = .false.            !! the run stopped before its first increment
       integer(i8) :: t0 = 0, rate = 1               !! clock at the start of the run
-      type(step_record_t) :: pret_last              !! the last step with pretension forces (summary)
+      type(step_record_t) :: pret_last              !! the last step with section forces (summary)
    contains
       procedure :: start => report_start
       procedure :: open => report_open
@@ -134,7 +135,7 @@ contains
       type(numbering_report_t), intent(in) :: numbering   !! what the equation numbering did
       type(run_info_t), intent(in) :: info                !! what the run uses
       type(body_fields_t), intent(in) :: body             !! the Gauss-point layout
-      logical, intent(in) :: set_up_failed                !! the run stopped before its first increment
+      logical, intent(in) :: set_up_failed                !! stopped before its first increment
       type(status_t), intent(inout) :: status
       integer :: ios
       character(len=256) :: iomsg
@@ -142,10 +143,11 @@ contains
       this%set_up_failed = set_up_failed
       this%have_lis = this%lis_level /= 'NONE'
       if (this%have_lis) then
-         open (newunit=this%lu, file=this%lis_path, status='replace', action='write', access='stream', &
-               form='formatted', iostat=ios, iomsg=iomsg)
+         open (newunit=this%lu, file=this%lis_path, status='replace', action='write', &
+               access='stream', form='formatted', iostat=ios, iomsg=iomsg)
          if (ios /= 0) then
-            call status%set(STAT_INPUT, 'cannot open the listing file '//this%lis_path//': '//trim(iomsg))
+            call status%set(STAT_INPUT, 'cannot open the listing file '//this%lis_path//': '// &
+                            trim(iomsg))
             this%have_lis = .false.
             return
          end if
@@ -157,7 +159,10 @@ contains
       end if
       call this%rf%create(this%rpath, m, body, status)
       if (status%ok()) call this%rf%write_run_info(info, status)
-      if (info%npair > 0 .and. status%ok()) call this%rf%write_contact_definition(m%contact, info, status)
+      if (info%npair > 0 .and. status%ok()) then
+         call this%rf%write_contact_definition(m%contact, info, status)
+      end if
+      if (status%ok()) call this%rf%write_header(m, info, numbering, status)
       if (.not. status%ok()) then
          ! a result path that cannot be created is a command-line error; a file created
          ! but not written (a full disk) is an output failure (exit 3)
@@ -214,7 +219,8 @@ contains
       if (srec%written) call this%rf%write_increment(srec, body, status, fields)
       listed = this%have_lis .and. (this%lis_level == 'FULL' .or. srec%last)
       if (listed .and. status%ok()) then
-         call list_step(this%lu, m, srec, body, fields, this%lis_path, status, this%lis_level /= 'FULL')
+         call list_step(this%lu, m, srec, body, fields, this%lis_path, status, &
+                        this%lis_level /= 'FULL')
       end if
       if (listed .and. status%ok()) call list_pretension_step(this%lu, m, srec)
       if (allocated(srec%pretension_force)) this%pret_last = srec
@@ -236,12 +242,13 @@ contains
       type(body_fields_t), intent(in) :: body        !! body fields of the last step
       type(contact_fields_t), intent(in) :: fields   !! contact fields of the last step
       type(run_end_t), intent(in) :: fin
-      type(status_t), intent(inout) :: status   !! a failure to write the listing or the result file ends it
+      type(status_t), intent(inout) :: status   !! a failure to write an output ends it
       logical, intent(out) :: reported
       type(run_summary_t) :: s
       type(status_t) :: st
       integer :: done, every
-      logical :: ran                            !! every increment done (what fails now, fails after them)
+      logical :: ran                            !! every increment done (what fails now, fails
+                                                !! after them)
       reported = .false.
       ran = status%ok() .and. .not. this%set_up_failed
       done = merge(-1, fin%completed, this%set_up_failed)
@@ -257,7 +264,9 @@ contains
          end if
          if (.not. this%set_up_failed) then
             call write_run_summary(this%lu, s, s%seconds)
-            if (allocated(fields%dissipated_energy)) call write_dissipation(this%lu, m, fields, fin%cycles)
+            if (allocated(fields%dissipated_energy)) then
+               call write_dissipation(this%lu, m, fields, fin%cycles)
+            end if
             call list_pretension_summary(this%lu, m, this%pret_last)
          end if
          call close_listing(this%lu, this%lis_path, status)
@@ -278,23 +287,28 @@ contains
          if (status%ok()) call list_doubts(stderr, fin%doubts, fin%doubt_line, this%rpath)
       else if (status%ok()) then
          call this%rf%set_status('completed', status)
-         if (status%ok() .and. .not. this%quiet) call list_completed(stdout, fin%completed, this%rpath)
+         if (status%ok() .and. .not. this%quiet) then
+            call list_completed(stdout, fin%completed, this%rpath)
+         end if
       end if
       if (.not. status%ok()) then
          if (this%set_up_failed) then
             call this%rf%set_status('failed at set-up: '//status%message)
          else if (ran) then
-            call this%rf%set_status('failed after the last increment ('//itoa(fin%completed)//'): '// &
-                                    status%message)
+            call this%rf%set_status('failed after the last increment ('//itoa(fin%completed)// &
+                                    '): '//status%message)
          else
-            call this%rf%set_status('failed at increment '//itoa(fin%completed + 1)//': '//status%message)
+            call this%rf%set_status('failed at increment '//itoa(fin%completed + 1)//': '// &
+                                    status%message)
          end if
          reported = .true.
          call list_failed(stderr, done, status%message, this%rpath, every)
       end if
       if (.not. (this%set_up_failed .or. this%quiet)) then
          call write_run_summary(stdout, s, s%seconds)
-         if (allocated(fields%dissipated_energy)) call write_dissipation(stdout, m, fields, fin%cycles)
+         if (allocated(fields%dissipated_energy)) then
+            call write_dissipation(stdout, m, fields, fin%cycles)
+         end if
          call list_pretension_summary(stdout, m, this%pret_last)
       end if
       call this%rf%close(status)

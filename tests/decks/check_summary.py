@@ -13,6 +13,7 @@ Tolerances: the listing prints es12.4 (5 significant digits: a printed value is 
 unit of its last digit, 5e-5 of the value) and es13.3 (5e-4) and f0.2 / f0.1 per cent (half a
 unit of the last digit); the figures of /summary are the doubles those lines were printed from.
 """
+
 import re
 import sys
 
@@ -53,14 +54,25 @@ def main(h5, lis):
     s = r.summary
     if r.status.startswith("failed at set-up"):
         # no increment, no summary: the listing ends with the failure
-        print(f"{h5}: failed at set-up, no /summary" if not s else "FAIL: /summary after a failed set-up")
+        print(
+            f"{h5}: failed at set-up, no /summary"
+            if not s
+            else "FAIL: /summary after a failed set-up"
+        )
         return 1 if s else 0
     if not s:
         print(f"FAIL: {h5} has no /summary")
         return 1
     lines = open(lis).read().splitlines()
-    start = next((i for i, t in enumerate(lines) if t.startswith("kontakt2d: completed with doubts")
-                  or t.startswith("kontakt2d: increment ")), None)
+    start = next(
+        (
+            i
+            for i, t in enumerate(lines)
+            if t.startswith("kontakt2d: completed with doubts")
+            or t.startswith("kontakt2d: increment ")
+        ),
+        None,
+    )
     if start is None:
         start = next((i for i, t in enumerate(lines) if "SUMMARY OF THE RUN" in t), None)
         if start is None:
@@ -78,7 +90,7 @@ def main(h5, lis):
             in_details = False
             continue
         if t.startswith("kontakt2d: completed with doubts: "):
-            equal("doubts", t[len("kontakt2d: completed with doubts: "):], need(s, "doubts"))
+            equal("doubts", t[len("kontakt2d: completed with doubts: ") :], need(s, "doubts"))
             equal("status", "doubtful: " + s.get("doubts", ""), r.status)
             in_details = True
             continue
@@ -87,7 +99,11 @@ def main(h5, lis):
             continue
         m = re.match(r"  \.\.\. and (\d+) more doubtful increment\(s\)$", t)
         if m and in_details:
-            equal("doubtful_increments", len(details) + int(m.group(1)), need(s, "doubtful_increments"))
+            equal(
+                "doubtful_increments",
+                len(details) + int(m.group(1)),
+                need(s, "doubtful_increments"),
+            )
             continue
         if in_details and t.startswith("  "):
             details.append(t[2:])
@@ -98,15 +114,20 @@ def main(h5, lis):
             equal("increments", int(m.group(1)) - 1, s["increments"])
             continue
         if re.match(r"kontakt2d: \d+ (completed )?increment", t):
-            continue   # where the finished increments are (the file itself)
-        m = re.match(r" SUMMARY OF THE RUN \(load stages follow the factor of load case (\d+)\)$", t)
+            continue  # where the finished increments are (the file itself)
+        m = re.match(
+            r" SUMMARY OF THE RUN \(load stages follow the factor of load case (\d+)\)$", t
+        )
         if m:
             equal("stage_load_case", int(m.group(1)), s["stage_load_case"])
             continue
         if t.startswith("  stage   increments"):
             continue
-        m = re.match(rf"\s+(\d+)\s+(\d+) -\s+(\d+)\s+({NUM}) ->\s*({NUM})\s+(loading|unloading|holding)"
-                     rf"\s+(\d+)\s+({NUM})$", t)
+        m = re.match(
+            rf"\s+(\d+)\s+(\d+) -\s+(\d+)\s+({NUM}) ->\s*({NUM})\s+(loading|unloading|holding)"
+            rf"\s+(\d+)\s+({NUM})$",
+            t,
+        )
         if m:
             k = int(m.group(1)) - 1
             stage = max(stage, k + 1)
@@ -114,14 +135,20 @@ def main(h5, lis):
             equal(f"stage {k + 1} last", int(m.group(3)), s["stage_last_increment"][k])
             close(f"stage {k + 1} from", m.group(4), s["stage_load_from"][k])
             close(f"stage {k + 1} to", m.group(5), s["stage_load_to"][k])
-            equal(f"stage {k + 1} kind", {"loading": 1, "unloading": -1, "holding": 0}[m.group(6)],
-                  s["stage_direction"][k])
+            equal(
+                f"stage {k + 1} kind",
+                {"loading": 1, "unloading": -1, "holding": 0}[m.group(6)],
+                s["stage_direction"][k],
+            )
             equal(f"stage {k + 1} solutions", int(m.group(7)), s["stage_solutions"][k])
             close(f"stage {k + 1} drift", m.group(8), s["stage_law_drift"][k], rel=6e-4)
             equal("stages_by_deck", 1, s["stages_by_deck"])
             continue
-        m = re.match(rf"\s+(\d+)\s+(\d+) -\s+(\d+)\s+automatic increments: stages not separated\s+(\d+)"
-                     rf"\s+({NUM})$", t)
+        m = re.match(
+            rf"\s+(\d+)\s+(\d+) -\s+(\d+)\s+automatic increments: stages not separated\s+(\d+)"
+            rf"\s+({NUM})$",
+            t,
+        )
         if m:
             k = int(m.group(1)) - 1
             stage = max(stage, k + 1)
@@ -138,13 +165,22 @@ def main(h5, lis):
             close("peak_pressure", m.group(1), need(s, "peak_pressure"))
             equal("stress_unit", m.group(2), need(s, "stress_unit"))
             equal("peak_pair", int(m.group(3)), s["peak_pair"])
-            close("peak x", m.group(4), s["peak_position"][0], abs_=1e-4 * abs(float(m.group(4))) + 1e-300)
+            close(
+                "peak x",
+                m.group(4),
+                s["peak_position"][0],
+                abs_=1e-4 * abs(float(m.group(4))) + 1e-300,
+            )
             close("peak y", m.group(5), s["peak_position"][1], abs_=1e-4 * abs(float(m.group(4))))
             continue
         if t.startswith("  peak pressure        none"):
             equal("peak_pair", 0, need(s, "peak_pair"))
             continue
-        m = re.match(rf"  contact width\s+({NUM}) (\S+) \((\d+) of (\d+) pairs closed\), area\s*({NUM}) \S+$", t)
+        m = re.match(
+            rf"  contact width\s+({NUM}) (\S+) \((\d+) of (\d+) pairs closed\), "
+            rf"area\s*({NUM}) \S+$",
+            t,
+        )
         if m:
             close("contact_width", m.group(1), need(s, "contact_width"))
             equal("length_unit", m.group(2), s["length_unit"])
@@ -159,7 +195,12 @@ def main(h5, lis):
         m = re.match(rf"  total force normal\s+({NUM}), tangential\s*({NUM}) (.*)$", t)
         if m:
             close("force_normal", m.group(1), need(s, "force_normal"))
-            close("force_tangential", m.group(2), s["force_tangential"], abs_=6e-5 * abs(float(m.group(1))))
+            close(
+                "force_tangential",
+                m.group(2),
+                s["force_tangential"],
+                abs_=6e-5 * abs(float(m.group(1))),
+            )
             equal("force_unit", m.group(3), s["force_unit"])
             continue
         m = re.match(r"  slipping pairs\s+(\d+) of (\d+) closed$", t)
@@ -171,7 +212,9 @@ def main(h5, lis):
             close("residual_closure", m.group(1), need(s, "residual_closure"))
             equal("unloaded_pairs", int(m.group(2)), s["unloaded_pairs"])
             continue
-        m = re.match(rf"  unloading law\s+(\d+) pair\(s\) .* pair (\d+), p_A\s*({NUM}) > p\*\s*({NUM}) ", t)
+        m = re.match(
+            rf"  unloading law\s+(\d+) pair\(s\) .* pair (\d+), p_A\s*({NUM}) > p\*\s*({NUM}) ", t
+        )
         if m:
             equal("beyond_range_pairs", int(m.group(1)), need(s, "beyond_range_pairs"))
             equal("beyond_range_pair", int(m.group(2)), need(s, "beyond_range_pair"))
@@ -185,9 +228,18 @@ def main(h5, lis):
             continue
         m = re.match(rf" estimated discretization error ({NUM}) % \(energy norm\)(.*)$", t)
         if m:
-            close("estimated_error", m.group(1), 100.0 * need(s, "estimated_error"), rel=0, abs_=0.0051)
-            zones = re.findall(rf"contact zone ({NUM}) \S+ wide resolved by (\d+) pairs?, largest pressure "
-                               rf"jump between neighbouring pairs ({NUM}) %|(no pair closed)", m.group(2))
+            close(
+                "estimated_error",
+                m.group(1),
+                100.0 * need(s, "estimated_error"),
+                rel=0,
+                abs_=0.0051,
+            )
+            zones = re.findall(
+                rf"contact zone ({NUM}) \S+ wide resolved by (\d+) pairs?, largest pressure "
+                rf"jump between neighbouring pairs ({NUM}) %|(no pair closed)",
+                m.group(2),
+            )
             for k, z in enumerate(zones):
                 if z[3]:
                     equal(f"zone {k + 1} pairs", 0, s["zone_pairs"][k])
@@ -204,8 +256,11 @@ def main(h5, lis):
             continue
         if t.startswith(" Energy dissipated by the contact laws, cumulative"):
             continue
-        m = re.match(rf"  interface (\d+): total\s+({NUM}), normal hysteresis\s*({NUM}), tangential "
-                     rf"\(friction\)\s*({NUM})$", t)
+        m = re.match(
+            rf"  interface (\d+): total\s+({NUM}), normal hysteresis\s*({NUM}), tangential "
+            rf"\(friction\)\s*({NUM})$",
+            t,
+        )
         if m:
             k = int(m.group(1)) - 1
             close(f"dissipated_energy {k + 1}", m.group(2), need(s, "dissipated_energy")[k])
@@ -219,19 +274,38 @@ def main(h5, lis):
             continue
         if t.startswith("  cycle  increments"):
             continue
-        m = re.match(rf"\s+(\d+)\s+(\d+) -\s+(\d+)\s+(\d+)\s+({NUM})\s+({NUM})\s+({NUM})\s+({NUM})\s+({NUM})"
-                     rf"\s+({NUM})$", t)
+        m = re.match(
+            rf"\s+(\d+)\s+(\d+) -\s+(\d+)\s+(\d+)\s+({NUM})\s+({NUM})\s+({NUM})\s+({NUM})\s+({NUM})"
+            rf"\s+({NUM})$",
+            t,
+        )
         if m and ncyc:
             c, i = int(m.group(1)) - 1, int(m.group(4)) - 1
             equal(f"cycle {c + 1} first", int(m.group(2)), cycles["first_increment"][c])
             equal(f"cycle {c + 1} last", int(m.group(3)), cycles["last_increment"][c])
-            for g, key in zip(range(5, 11), ["energy", "force_amplitude", "slip_amplitude",
-                                             "secant_stiffness", "loss_factor", "damping_ratio"]):
+            for g, key in zip(
+                range(5, 11),
+                [
+                    "energy",
+                    "force_amplitude",
+                    "slip_amplitude",
+                    "secant_stiffness",
+                    "loss_factor",
+                    "damping_ratio",
+                ],
+            ):
                 a = cycles[key]
-                close(f"cycle {c + 1} {key}", m.group(g), a[c, i] if a.shape[0] == len(cycles["first_increment"])
-                      else a[i, c])
+                close(
+                    f"cycle {c + 1} {key}",
+                    m.group(g),
+                    a[c, i] if a.shape[0] == len(cycles["first_increment"]) else a[i, c],
+                )
             continue
-        m = re.match(rf' pretension section "(.*)" at increment (\d+): force\s*({NUM}), shortening\s*({NUM})$', t)
+        m = re.match(
+            rf' pretension section "(.*)" at increment (\d+): force\s*({NUM}), '
+            rf"shortening\s*({NUM})$",
+            t,
+        )
         if m:
             if "pretension_force" not in s:
                 failures.append("/summary has no pretension_force")
@@ -240,7 +314,12 @@ def main(h5, lis):
             k = sum(1 for d in details if d.startswith("@pret"))
             details.append("@pret")
             close(f"pretension_force {k + 1}", m.group(3), s["pretension_force"][k], rel=6e-11)
-            close(f"pretension_shortening {k + 1}", m.group(4), s["pretension_shortening"][k], rel=6e-8)
+            close(
+                f"pretension_shortening {k + 1}",
+                m.group(4),
+                s["pretension_shortening"][k],
+                rel=6e-8,
+            )
             continue
         failures.append(f"a line of the summary the check does not know: {t!r}")
     if stage:

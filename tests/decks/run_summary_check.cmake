@@ -1,6 +1,7 @@
 # Run a deck (its exit code as expected), then check that the result file's /summary records
 # everything the listing's closing summary says (check_summary.py).
-#   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCHECK=... -DEXPECT_RC=n -P run_summary_check.cmake
+#   cmake -DEXE=... -DDECK=... -DWORK=... -DPYTHON=... -DCHECK=... -DEXPECT_RC=n
+#         -P run_summary_check.cmake
 get_filename_component(name "${DECK}" NAME_WE)
 set(out "${WORK}/summary_${name}.h5")
 file(REMOVE "${out}" "${WORK}/summary_${name}.lis")
