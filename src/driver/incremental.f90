@@ -21,7 +21,8 @@
 !! increment with new stiffnesses, solved for the correction).  Totals are sums
 !! of increments (eqs. 3.34-3.36).  An accepted step fills the step record;
 !! the assembly layer fills the body fields (stresses, reactions), the contact
-!! layer the contact fields; the result file and the listing write them.
+!! layer the contact fields; run_report (io) writes them to the result file,
+!! the listing and the terminal, and owns those outputs and their paths.
 !!
 !! A numerical failure stops the loop cleanly: every finished increment stays
 !! in the result file, whose status attribute says what happened (a failure
@@ -341,7 +342,8 @@ contains
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
             if (an%has_contact) call tangential_drift(m%contact, res%contact, an%tlaw, srec%drift_t, srec%drift_t_pair)
             if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
-            if (an%has_contact) call out%note_reversals(m%contact, pa_old, res%contact%s%pa, srec, res%warnings)
+            if (an%has_contact) call out%note_reversals(m%contact, pa_old, res%contact%s%pa, srec, &
+                                                        res%warnings)
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
             if (.not. status%ok()) exit deck
             cuts = 0
@@ -450,7 +452,7 @@ contains
       type(model_t), intent(in) :: m
       type(run_result_t), intent(inout) :: res
       type(run_report_t), intent(inout) :: out
-      type(status_t), intent(inout) :: status   !! a failure to write the listing or the result file ends it
+      type(status_t), intent(inout) :: status   !! a failure to write an output ends it
       logical, intent(in) :: set_up_failed      !! the run stopped before its first increment
       type(run_end_t) :: fin
       if (.not. set_up_failed) then
