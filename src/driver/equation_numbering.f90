@@ -8,30 +8,19 @@
 !! results are reported in the user's node numbers: only the equation
 !! numbers change.
 module equation_numbering
-   use kinds, only: dp, i8
    use errors, only: status_t
-   use strings, only: itoa, rtoa
    use run_plan, only: run_plan_t, ORDERING_RCM, ordering_name
    use model, only: model_t
+   use records, only: numbering_report_t
    use dof_map, only: dof_map_t, build_dof_map
-   use renumber, only: rcm_order, RENUMBER_NONE
+   use renumber, only: rcm_order
    use graph, only: build_node_graph, build_equation_graph, graph_profile
    implicit none
    private
-   public :: numbering_report_t, number_equations, write_numbering_report
+   public :: numbering_report_t, number_equations
 
-   !> What the numbering did, for the listing and the terminal.
-   type :: numbering_report_t
-      character(len=:), allocatable :: method      !! 'RCM' or 'NONE'
-      character(len=:), allocatable :: reason      !! why this method
-      integer(i8) :: profile_before = 0            !! skyline length in the user's order
-      real(dp) :: mean_before = 0.0_dp
-      integer :: max_before = 0
-      integer(i8) :: profile_after = 0             !! skyline length in the order used
-      real(dp) :: mean_after = 0.0_dp
-      integer :: max_after = 0
-      character(len=:), allocatable :: solver_choice   !! the automatic choice of the solver and why ('' none)
-   end type numbering_report_t
+   ! numbering_report_t (what the numbering did) is a record (model layer): the listing
+   ! prints it (listing's list_numbering)
 
 contains
 
@@ -82,30 +71,4 @@ contains
       call build_equation_graph(map, nxadj, nadj, xadj, adjncy)
       call graph_profile(map%neq, xadj, adjncy, rep%profile_after, rep%mean_after, rep%max_after, status)
    end subroutine number_equations
-
-   !> Two or three lines for the listing header and the terminal.
-   subroutine write_numbering_report(u, rep)
-      integer, intent(in) :: u
-      type(numbering_report_t), intent(in) :: rep
-      if (allocated(rep%solver_choice)) then
-         if (len(rep%solver_choice) > 0) write (u, '(a)') ' Solver choice: '//rep%solver_choice
-      end if
-      write (u, '(a)') ' Renumbering  : '//rep%method//' ('//rep%reason//')'
-      write (u, '(a)') ' Profile      : user order '//profile_text(rep%profile_before, rep%mean_before, rep%max_before)
-      if (rep%method /= RENUMBER_NONE) then
-         write (u, '(a)') '                '//rep%method//'        '// &
-         profile_text(rep%profile_after, rep%mean_after, rep%max_after)
-      end if
-   end subroutine write_numbering_report
-
-   !> "skyline N, mean column height H, max M".
-   function profile_text(n, mean, mx) result(s)
-      integer(i8), intent(in) :: n
-      real(dp), intent(in) :: mean
-      integer, intent(in) :: mx
-      character(len=:), allocatable :: s
-      character(len=24) :: b
-      write (b, '(i0)') n
-      s = 'skyline '//trim(b)//', mean column height '//rtoa(mean, '(f0.1)')//', max '//itoa(mx)
-   end function profile_text
 end module equation_numbering

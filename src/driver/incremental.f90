@@ -21,7 +21,8 @@
 !! increment with new stiffnesses, solved for the correction).  Totals are sums
 !! of increments (eqs. 3.34-3.36).  An accepted step fills the step record;
 !! the assembly layer fills the body fields (stresses, reactions), the contact
-!! layer the contact fields; the result file and the listing write them.
+!! layer the contact fields; run_report (io) writes them to the result file,
+!! the listing and the terminal, and owns those outputs and their paths.
 !!
 !! A numerical failure stops the loop cleanly: every finished increment stays
 !! in the result file, whose status attribute says what happened (a failure
@@ -31,13 +32,13 @@
 !! ends "doubtful", naming them.  The model is read only: what the run used is
 !! reported in the run information.
 module incremental
-   use kinds, only: dp, i8, stdout, stderr
+   use kinds, only: dp, stderr
    use errors, only: status_t, STAT_INPUT, STAT_NO_CONVERGENCE
-   use strings, only: itoa, rtoa, strip_extension, basename
+   use strings, only: itoa, rtoa
    use model, only: model_t, NTYPE_AXISYMMETRIC, complete_model, model_complete
-   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, STEP_CONVERGED, &
+   use records, only: step_record_t, contact_fields_t, run_info_t, run_doubts_t, STEP_CONVERGED, &
                       STEP_UNSETTLED, cycle_table_t
-   use equation_numbering, only: numbering_report_t, number_equations, write_numbering_report
+   use equation_numbering, only: numbering_report_t, number_equations
    use solver_factory, only: create_solver, plan_run
    use contact_system, only: contact_equations
    use contact_system_factory, only: create_contact_system, contact_system_kind
@@ -54,14 +55,10 @@ module incremental
    use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular
    use contact_fields, only: build_contact_fields, pair_spacing
    use contact_energy, only: energy_t, energy_init, energy_begin, energy_commit, energy_fields, energy_cycles
-   use results_hdf5, only: results_file_t
-   use run_summary, only: list_run_summary, list_dissipation
+   use run_report, only: run_report_t, run_end_t
    use pretension_section, only: pretension_links
    use pretension_assembly, only: assemble_pretension, pretension_nodal_forces, section_forces, section_shortening
    use pretension_control, only: attempt_with_pretension
-   use pretension_report, only: list_pretension_sections, list_pretension_step, list_pretension_summary
-   use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
-                      list_progress, list_completed, list_failed, list_doubts, close_listing, list_reversals
    implicit none
    private
    public :: run_options_t, run_result_t, run_analysis
@@ -93,19 +90,6 @@ module incremental
       type(cycle_table_t) :: cycles              !! the load cycles found in the history, at the end of the run
    end type run_result_t
 
-   !> Where a run reports: the result file, the listing, the terminal.
-   type :: outputs_t
-      type(results_file_t) :: rf
-      integer :: lu = 0                            !! listing unit
-      logical :: have_lis = .false.
-      character(len=:), allocatable :: lis_level   !! FULL, SHORT or NONE
-      character(len=:), allocatable :: lis_path
-      logical :: quiet = .false.
-      logical :: set_up_failed = .false.           !! the run stopped before its first increment
-      integer(i8) :: t0 = 0, rate = 1              !! clock at the start of the run
-      type(step_record_t) :: pret_last             !! the last step with pretension forces (summary)
-   end type outputs_t
-
 contains
 
    !> Solve the model through its load history.  A model built in code
@@ -132,13 +116,14 @@ contains
       type(run_result_t), intent(inout) :: res
       type(status_t), intent(inout) :: status
       type(analysis_t) :: an
-      type(outputs_t) :: out
+      type(run_report_t) :: out                 !! every output of the run (module run_report)
       type(numbering_report_t) :: numbering
       type(status_t) :: ostat
       type(run_plan_t) :: plan
       character(len=:), allocatable :: solver_name
 
-      call system_clock(out%t0, out%rate)
+      call out%start(m%deck_file, m%listing_level, opts%quiet, opts%results_path, opts%listing_path)
+      res%results_path = out%results_path()
       ! the run plan, resolved once: -s, else the deck's SOLVER, else (AUTO) from the model's size
       ! and contact; the order of the equations, the scheme (the contact system in set_up)
       if (allocated(opts%solver_name)) then
@@ -146,16 +131,6 @@ contains
       else
          call plan_run(m, '', plan, solver_name)
       end if
-      res%results_path = strip_extension(basename(m%deck_file))//'.h5'
-      if (allocated(opts%results_path)) then
-         if (len(opts%results_path) > 0) res%results_path = opts%results_path
-      end if
-      out%lis_path = strip_extension(res%results_path)//'.lis'
-      if (allocated(opts%listing_path)) then
-         if (len(opts%listing_path) > 0) out%lis_path = opts%listing_path
-      end if
-      out%lis_level = m%listing_level
-      out%quiet = opts%quiet
 
       call set_up(m, solver_name, plan, an, numbering, status)
       if (plan%solver_choice == CHOICE_AUTOMATIC) then
@@ -163,21 +138,20 @@ contains
       end if
       if (status%ok()) call start_run(m, plan, an, res, status)
       if (status%ok()) then
-         call open_outputs(m, numbering, res, out, status)
+         call out%open(m, numbering, res%info, res%body_fields_t, .false., status)
          if (status%ok()) then
             call solve_history(m, an, res, out, status)
-            call close_outputs(m, res, out, status)
+            call close_outputs(m, res, out, status, .false.)
          end if
       else if (status%code /= STAT_INPUT) then
          ! a numerical failure before the first increment: the result file
          ! keeps the mesh and says why (the listing and terminal too)
-         out%set_up_failed = .true.
          if (.not. allocated(numbering%method)) numbering = numbering_report_t(method='NONE', reason='not reached')
          if (.not. allocated(res%info%solver)) res%info = run_info_t(plan=plan, solver=solver_name, system='', &
                                        npair=an%npair, returning=an%returning, modified=an%modified)
          call zero_fields(m, res%body_fields_t)
-         call open_outputs(m, numbering, res, out, ostat)
-         if (ostat%ok()) call close_outputs(m, res, out, status)
+         call out%open(m, numbering, res%info, res%body_fields_t, .true., ostat)
+         if (ostat%ok()) call close_outputs(m, res, out, status, .true.)
       end if
       if (allocated(an%sys)) call an%sys%free()
       if (allocated(an%solver)) call an%solver%free()
@@ -275,61 +249,13 @@ contains
                             max_switch=MAX_SWITCH)
    end subroutine start_run
 
-   !> The listing, then the result file (nothing is left behind if either
-   !! fails), then the terminal's header.
-   subroutine open_outputs(m, numbering, res, out, status)
-      type(model_t), intent(in) :: m
-      type(numbering_report_t), intent(in) :: numbering
-      type(run_result_t), intent(in) :: res
-      type(outputs_t), intent(inout) :: out
-      type(status_t), intent(inout) :: status
-      integer :: ios
-      character(len=256) :: iomsg
-
-      out%have_lis = out%lis_level /= 'NONE'
-      if (out%have_lis) then
-         open (newunit=out%lu, file=out%lis_path, status='replace', action='write', access='stream', &
-               form='formatted', iostat=ios, iomsg=iomsg)
-         if (ios /= 0) then
-            call status%set(STAT_INPUT, 'cannot open the listing file '//out%lis_path//': '//trim(iomsg))
-            return
-         end if
-         call list_header(out%lu, m, res%info)
-         call write_numbering_report(out%lu, numbering)
-         call list_method(out%lu, res%info)
-         call list_pretension_sections(out%lu, m)
-         if (out%lis_level == 'FULL') call list_input(out%lu, m)
-      end if
-      call out%rf%create(res%results_path, m, res%body_fields_t, status)
-      if (status%ok()) call out%rf%write_run_info(res%info, status)
-      if (res%info%npair > 0 .and. status%ok()) call out%rf%write_contact_definition(m%contact, res%info, status)
-      if (.not. status%ok()) then
-         ! a result path that cannot be created is a command-line error; a file created
-         ! but not written (a full disk) is an output failure (exit 3)
-         if (.not. out%rf%is_open()) status%code = STAT_INPUT
-         call out%rf%close()
-         if (out%have_lis) close (out%lu, status='delete')
-         return
-      end if
-      if (.not. out%quiet) then
-         call list_header(stdout, m, res%info)
-         call write_numbering_report(stdout, numbering)
-         call list_method(stdout, res%info)
-         call list_pretension_sections(stdout, m)
-         write (stdout, '(a)') ' Results      : '//res%results_path
-         if (out%have_lis) write (stdout, '(a)') ' Listing      : '//out%lis_path
-         write (stdout, '(a)') repeat('-', 78)
-         call list_progress_header(stdout, res%info%npair > 0)
-      end if
-   end subroutine open_outputs
-
    !> The loop over the deck's increments; with AUTOINC each may be cut into
    !! steps (halved when a step fails, doubled after easy ones).
    subroutine solve_history(m, an, res, out, status)
       type(model_t), intent(in) :: m
       type(analysis_t), intent(inout) :: an
       type(run_result_t), intent(inout) :: res
-      type(outputs_t), intent(inout) :: out
+      type(run_report_t), intent(inout) :: out
       type(status_t), intent(inout) :: status
       type(attempt_t) :: att
       type(step_record_t) :: srec
@@ -381,8 +307,7 @@ contains
                status = status_t()
                step = max(0.5_dp*s, m%autoinc_min)
                cuts = cuts + 1
-               if (.not. out%quiet) write (stdout, '(a,i0,a,f9.6)') '      cut: deck increment ', inc, &
-                  ', step fraction ', step
+               call out%note_cut(inc, step)
                cycle
             end if
 
@@ -394,7 +319,7 @@ contains
             last = inc == m%nincs .and. frac >= 1.0_dp - 1.0e-12_dp
             ! OPTIONS RESULTS n: only every n-th step and the last go into the result file
             written = last .or. mod(nstep, m%results_every) == 0
-            full = written .or. .not. an%has_contact .or. (out%have_lis .and. out%lis_level == 'FULL')
+            full = written .or. .not. an%has_contact .or. out%lists_every_step()
             call an%sys%recover(att%du, full, status)
             if (.not. status%ok()) exit deck
             an%pending = .not. full
@@ -417,7 +342,8 @@ contains
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
             if (an%has_contact) call tangential_drift(m%contact, res%contact, an%tlaw, srec%drift_t, srec%drift_t_pair)
             if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
-            if (an%has_contact) call list_reversals(m%contact, pa_old, res%contact%s%pa, srec, out%lu, out%have_lis, res%warnings)
+            if (an%has_contact) call out%note_reversals(m%contact, pa_old, res%contact%s%pa, srec, &
+                                                        res%warnings)
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
             if (.not. status%ok()) exit deck
             cuts = 0
@@ -475,13 +401,12 @@ contains
       type(model_t), intent(in) :: m
       type(analysis_t), intent(inout) :: an
       type(run_result_t), intent(inout) :: res
-      type(outputs_t), intent(inout) :: out
+      type(run_report_t), intent(inout) :: out
       real(dp), intent(in) :: fext(:, :), ve_old(:)
       type(step_record_t), intent(inout) :: srec
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: fsp(:, :), fpm(:)
       real(dp) :: imb
-      integer(i8) :: t1
       integer :: k
 
       ! the body fields where the full displacements were recovered (srec%full)
@@ -516,77 +441,33 @@ contains
       if (an%has_contact) call energy_fields(m%contact, res%contact, res%energy, res%fields)
       if (srec%full .and. status%ok()) call estimate_error(m, res%body_fields_t, res%fields, status)
 
-      if (srec%written) call out%rf%write_increment(srec, res%body_fields_t, status, res%fields)
-      if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) then
-         call list_step(out%lu, m, srec, res%body_fields_t, res%fields, out%lis_path, status, out%lis_level /= 'FULL')
-      end if
-      if (out%have_lis .and. status%ok() .and. (out%lis_level == 'FULL' .or. srec%last)) then
-         call list_pretension_step(out%lu, m, srec)
-      end if
-      if (allocated(srec%pretension_force)) out%pret_last = srec
+      call out%write_step(m, srec, res%body_fields_t, res%fields, status)
       if (.not. status%ok()) return
       res%completed = srec%step
-      call system_clock(t1)
-      if (.not. out%quiet) then
-         call list_progress(stdout, srec, res%body_fields_t, real(t1 - out%t0, dp)/real(out%rate, dp), res%fields)
-         flush (stdout)
-      end if
    end subroutine finish_step
 
-   !> The end of the run: the result file's status, the closing messages,
-   !! files closed.
-   subroutine close_outputs(m, res, out, status)
+   !> The end of the run: the load cycles found, then the outputs' closing
+   !! lines, summary and status (run_report's finish).
+   subroutine close_outputs(m, res, out, status, set_up_failed)
       type(model_t), intent(in) :: m
       type(run_result_t), intent(inout) :: res
-      type(outputs_t), intent(inout) :: out
-      type(status_t), intent(inout) :: status   !! a failure to write the listing or the result file ends it
-      character(len=:), allocatable :: doubts
-      integer :: done, every
-      logical :: ran                            !! every increment done (what fails now, fails after them)
-      ran = status%ok() .and. .not. out%set_up_failed
-      if (.not. out%set_up_failed) call energy_cycles(res%energy, res%cycles)
-      done = merge(-1, res%completed, out%set_up_failed)
-      every = merge(1, m%results_every, out%set_up_failed)
-      ! the listing's closing lines and summary; the listing is then closed and
-      ! checked (a full disk shows only at its close)
-      if (out%have_lis) then
-         if (status%ok() .and. res%doubts%steps > 0) then
-            call list_doubts(out%lu, res%doubts, doubt_summary(res%doubts, res%completed), '', res%info)
-         else if (.not. status%ok()) then
-            call list_failed(out%lu, done, status%message, res%results_path, every)
-         end if
-         if (.not. out%set_up_failed) call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, &
-                                            res%drift, res%contact%s%ua, res%contact%s%pa, .true., out%lu, .true., out%t0, out%rate)
-         if (.not. out%set_up_failed) call list_dissipation(m, res%fields, res%cycles, .true., out%lu, .true.)
-         if (.not. out%set_up_failed) call list_pretension_summary(out%lu, m, out%pret_last)
-         call close_listing(out%lu, out%lis_path, status)
+      type(run_report_t), intent(inout) :: out
+      type(status_t), intent(inout) :: status   !! a failure to write an output ends it
+      logical, intent(in) :: set_up_failed      !! the run stopped before its first increment
+      type(run_end_t) :: fin
+      if (.not. set_up_failed) then
+         call energy_cycles(res%energy, res%cycles)
+         fin%solutions = res%iterations
+         fin%drift = res%drift
+         fin%ua = res%contact%s%ua
+         fin%pa = res%contact%s%pa
       end if
-      if (status%ok() .and. res%cycles%ncycle > 0) call out%rf%write_cycles(res%cycles, status)
-      if (status%ok() .and. res%doubts%steps > 0) then
-         ! completed, but not to be trusted without a look: exit code 4
-         doubts = doubt_summary(res%doubts, res%completed)
-         call out%rf%set_status('doubtful: '//doubts, status)
-         if (status%ok()) call list_doubts(stderr, res%doubts, doubts, res%results_path)
-      else if (status%ok()) then
-         call out%rf%set_status('completed', status)
-         if (status%ok() .and. .not. out%quiet) call list_completed(stdout, res%completed, res%results_path)
-      end if
-      if (.not. status%ok()) then
-         if (out%set_up_failed) then
-            call out%rf%set_status('failed at set-up: '//status%message)
-         else if (ran) then
-            call out%rf%set_status('failed after the last increment ('//itoa(res%completed)//'): '//status%message)
-         else
-            call out%rf%set_status('failed at increment '//itoa(res%completed + 1)//': '//status%message)
-         end if
-         res%reported = .true.
-         call list_failed(stderr, done, status%message, res%results_path, every)
-      end if
-      if (.not. out%set_up_failed) call list_run_summary(m, res%body_fields_t, res%fields, res%iterations, res%drift, &
-                                                         res%contact%s%ua, res%contact%s%pa, .false., out%lu, &
-                                                         out%quiet, out%t0, out%rate)
-      if (.not. out%set_up_failed) call list_dissipation(m, res%fields, res%cycles, .false., out%lu, out%quiet)
-      if (.not. (out%set_up_failed .or. out%quiet)) call list_pretension_summary(stdout, m, out%pret_last)
-      call out%rf%close(status)
+      fin%completed = res%completed
+      fin%doubts = res%doubts
+      if (res%doubts%steps > 0) fin%doubt_line = doubt_summary(res%doubts, res%completed)
+      fin%cycles = res%cycles
+      fin%info = res%info
+      fin%warnings = res%warnings
+      call out%finish(m, res%body_fields_t, res%fields, fin, status, res%reported)
    end subroutine close_outputs
 end module incremental

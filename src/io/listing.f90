@@ -10,7 +10,7 @@
 !!
 !! Ref: Hinton & Owen (1977), OUTPUT.
 module listing
-   use kinds, only: dp, pi, stderr
+   use kinds, only: dp, i8, pi, stderr
    use errors, only: status_t, STAT_IO
    use strings, only: itoa, rtoa
    use version, only: K2D_VERSION
@@ -20,6 +20,8 @@ module listing
    use run_plan, only: plan_summary
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, NS_OPEN, &
                       NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP, MAX_DOUBT_LINES
+   use records, only: numbering_report_t
+   use renumber, only: RENUMBER_NONE
    implicit none
    private
    public :: list_header, list_method, list_input, list_step, list_displacements, list_stresses, &
@@ -27,6 +29,7 @@ module listing
    public :: list_completed, list_failed, list_sliding_warning, list_doubts, list_interfaces
    public :: reversal_warning, list_reversals, doubt_advice
    public :: close_listing, check_listing, SHORT_TABLE_MAX_NODES
+   public :: list_numbering
 
    !> A SHORT listing lists the whole mesh's tables (displacements of every
    !! node, stresses at every Gauss point) of its last increment up to this
@@ -159,6 +162,35 @@ contains
       if (info%autoinc) write (u, '(a)') ' Increments   : automatic (cut on failure or chatter, smallest step '// &
          rtoa(info%autoinc_min)//' of a deck increment)'
    end subroutine list_method
+
+   !> What the equation numbering did (the automatic choice of the solver,
+   !! the renumbering and the profile before and after): two to four lines
+   !! for the listing header and the terminal.
+   subroutine list_numbering(u, rep)
+      integer, intent(in) :: u
+      type(numbering_report_t), intent(in) :: rep
+      if (allocated(rep%solver_choice)) then
+         if (len(rep%solver_choice) > 0) write (u, '(a)') ' Solver choice: '//rep%solver_choice
+      end if
+      write (u, '(a)') ' Renumbering  : '//rep%method//' ('//rep%reason//')'
+      write (u, '(a)') ' Profile      : user order '// &
+         profile_text(rep%profile_before, rep%mean_before, rep%max_before)
+      if (rep%method /= RENUMBER_NONE) then
+         write (u, '(a)') '                '//rep%method//'        '// &
+            profile_text(rep%profile_after, rep%mean_after, rep%max_after)
+      end if
+   end subroutine list_numbering
+
+   !> "skyline N, mean column height H, max M".
+   function profile_text(n, mean, mx) result(s)
+      integer(i8), intent(in) :: n
+      real(dp), intent(in) :: mean
+      integer, intent(in) :: mx
+      character(len=:), allocatable :: s
+      character(len=24) :: b
+      write (b, '(i0)') n
+      s = 'skyline '//trim(b)//', mean column height '//rtoa(mean, '(f0.1)')//', max '//itoa(mx)
+   end function profile_text
 
    !> Echo of the input data (FULL listing).
    subroutine list_input(u, m)

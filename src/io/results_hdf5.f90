@@ -33,9 +33,12 @@
 !!     call rf%create(path, m, body, status)          ! the mesh, status "running"
 !!     call rf%write_run_info(info, status)           ! root attributes of the run
 !!     call rf%write_contact_definition(c, info, status)
+!!     call rf%write_header(m, info, numbering, status)  ! the rest of the listing's header
 !!     do accepted step
 !!        call rf%write_increment(step, body, status, contact)   ! one group, flushed
 !!     end do
+!!     call rf%write_cycles(tab, status)              ! /cycles (a periodic history)
+!!     call rf%write_summary(s, status)               ! /summary: what the listing's summary says
 !!     call rf%set_status(text)                       ! completed / doubtful: ... / failed at ...
 !!     call rf%close()
 !!
@@ -49,7 +52,8 @@
 !! is never allowed to fill under HDF5:
 !!  - `create` holds a reserve file beside the result file (`NAME.reserve`,
 !!    RESERVE_BYTES allocated on the disk, module disk_reserve); at the end of the
-!!    run (`set_status`, `close`) it is deleted, which gives the last status,
+!!    run (`write_summary`, `set_status`, `close`) it is deleted, which gives the summary,
+!!    the last status,
 !!    flush and close their room whatever the listing took meanwhile;
 !!  - before the mesh, the contact definition and every increment group,
 !!    `probe_room` allocates the bytes the group will take (its arrays plus a
@@ -70,11 +74,13 @@ module results_hdf5
    use strings, only: itoa
    use model, only: model_t, ntype_name, MAX_NODE
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, cycle_table_t
+   use records, only: numbering_report_t
    use run_plan, only: solver_name, choice_name, system_name, ordering_name, scheme_name, CHOICE_AUTOMATIC
    use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, law_name, &
                             matching_name, rigid_shape_name, MAX_PAIR_NODES
    use version, only: K2D_VERSION
    use disk_reserve, only: reserve_t
+   use run_summary, only: run_summary_t
    use xdmf_writer, only: write_xdmf, xdmf_path, CELL_NNODE, XDMF_CELL_CODE
    implicit none
    private
@@ -109,6 +115,8 @@ module results_hdf5
       procedure :: is_open => results_is_open
       procedure :: increments_completed => results_increments_completed
       procedure :: write_cycles => results_write_cycles
+      procedure :: write_summary => results_write_summary
+      procedure :: write_header => results_write_header
    end type results_file_t
 
    logical :: library_open = .false.
@@ -593,6 +601,139 @@ contains
       call keep(e, err)
       if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write /cycles in '//this%path)
    end subroutine results_write_cycles
+
+   !> Root attributes of the figures of the listing's header not written elsewhere: the counts
+   !! (materials, deck increments, equations, restrained dofs) and what the equation numbering
+   !! did (why its order; the profile in the user's order and in the order used: skyline
+   !! length, mean and largest column height).
+   subroutine results_write_header(this, m, info, numbering, status)
+      class(results_file_t), intent(inout) :: this
+      type(model_t), intent(in) :: m
+      type(run_info_t), intent(in) :: info
+      type(numbering_report_t), intent(in) :: numbering
+      type(status_t), intent(inout) :: status
+      integer :: err
+      if (.not. this%opened) return
+      err = 0
+      call attr_int(this%fid, 'materials', m%nmats, err)
+      call attr_int(this%fid, 'deck_increments', m%nincs, err)
+      call attr_int(this%fid, 'equations', info%neq, err)
+      call attr_int(this%fid, 'restrained_dofs', info%nres, err)
+      if (allocated(numbering%reason)) then
+         if (len(numbering%reason) > 0) then
+            call attr_string(this%fid, 'ordering_reason', numbering%reason, err)
+         end if
+      end if
+      call attr_real1(this%fid, 'profile_user_order', [real(numbering%profile_before, dp), &
+                      numbering%mean_before, real(numbering%max_before, dp)], err)
+      call attr_real1(this%fid, 'profile_used', [real(numbering%profile_after, dp), &
+                      numbering%mean_after, real(numbering%max_after, dp)], err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the header attributes to '// &
+                                   this%path)
+   end subroutine results_write_header
+
+   !> /summary: the closing summary of the run as the listing and the terminal print it
+   !! (run_summary_t, docs/results-format.md "Run summary"): the load stages, the interface at the
+   !! end, the error estimate, the energy dissipated, the pretension sections, the doubts, the
+   !! solutions and the time.  Written once, at the end of a run that got past its set-up.
+   subroutine results_write_summary(this, s, status)
+      class(results_file_t), intent(inout) :: this
+      type(run_summary_t), intent(in) :: s
+      type(status_t), intent(inout) :: status
+      integer(hid_t) :: gid
+      integer :: err, e
+      if (.not. this%opened) return
+      ! the end of the run: the reserve (1 MB) gives the summary (a few kB, 56 bytes a load stage)
+      ! and then the status their room, whatever the listing took meanwhile
+      call release_reserve(this)
+      err = 0
+      call h5gcreate_f(this%fid, 'summary', gid, e)
+      if (e < 0) then
+         call status%set(STAT_IO, 'HDF5: cannot create group /summary in '//this%path)
+         return
+      end if
+      call attr_int(gid, 'increments', s%nstep, err)
+      call attr_int(gid, 'solutions', s%solutions_total, err)
+      call attr_real0(gid, 'wall_seconds', s%seconds, err)
+      call attr_int(gid, 'warnings', s%warnings, err)
+      ! the load stages (by the factor of one load case)
+      call attr_int(gid, 'stage_load_case', s%icase, err)
+      call attr_int(gid, 'stages_by_deck', merge(1, 0, s%by_deck), err)
+      if (size(s%first) > 0) then
+         call write_int1(gid, 'stage_first_increment', s%first, err)
+         call write_int1(gid, 'stage_last_increment', s%last, err)
+         call write_int1(gid, 'stage_direction', s%direction, err)
+         call write_real1(gid, 'stage_load_from', s%lam_from, err)
+         call write_real1(gid, 'stage_load_to', s%lam_to, err)
+         call write_int1(gid, 'stage_solutions', s%solutions, err)
+         call write_real1(gid, 'stage_law_drift', s%drift, err)
+      end if
+      if (s%contact) call summary_interface(gid, s, err)
+      if (s%estimated) then
+         call attr_real0(gid, 'estimated_error', s%estimated_error, err)
+         if (allocated(s%zone_width)) then
+            call attr_real1(gid, 'zone_width', s%zone_width, err)
+            call attr_int1(gid, 'zone_pairs', s%zone_pairs, err)
+            call attr_real1(gid, 'zone_jump', s%zone_jump, err)
+         end if
+      end if
+      if (allocated(s%dissipated)) then
+         call attr_real1(gid, 'dissipated_energy', s%dissipated, err)
+         call attr_real1(gid, 'dissipated_normal', s%dissipated_normal, err)
+         call attr_real1(gid, 'dissipated_tangential', s%dissipated_tangential, err)
+      end if
+      if (s%pretension_step > 0) then
+         call attr_int(gid, 'pretension_increment', s%pretension_step, err)
+         call attr_real1(gid, 'pretension_force', s%pretension_force, err)
+         call attr_real1(gid, 'pretension_shortening', s%pretension_shortening, err)
+      end if
+      call attr_int(gid, 'doubtful_increments', s%doubtful, err)
+      if (s%doubtful > 0) then
+         call attr_int(gid, 'doubtful_frozen', s%doubt_frozen, err)
+         call attr_int(gid, 'doubtful_drift', s%doubt_drift, err)
+         call attr_int(gid, 'doubtful_violations', s%doubt_violations, err)
+         call attr_int(gid, 'first_doubtful_increment', s%first_doubtful, err)
+         if (len(s%doubts) > 0) call attr_string(gid, 'doubts', s%doubts, err)
+         if (len(s%doubt_details) > 0) call attr_string(gid, 'doubt_details', s%doubt_details, err)
+      end if
+      call h5gclose_f(gid, e)
+      call keep(e, err)
+      call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, e)
+      call keep(e, err)
+      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write /summary in '//this%path)
+   end subroutine results_write_summary
+
+   !> The interface at the end of the run, attributes of /summary (model units; their names in
+   !! length_unit, stress_unit, force_unit as the listing prints them).
+   subroutine summary_interface(gid, s, err)
+      integer(hid_t), intent(in) :: gid
+      type(run_summary_t), intent(in) :: s
+      integer, intent(inout) :: err
+      call attr_string(gid, 'length_unit', s%length_unit, err)
+      call attr_string(gid, 'stress_unit', s%stress_unit, err)
+      call attr_string(gid, 'force_unit', s%force_unit, err)
+      call attr_int(gid, 'pairs', s%npair, err)
+      call attr_int(gid, 'closed_pairs', s%nclosed, err)
+      call attr_int(gid, 'slipping_pairs', s%nslip, err)
+      call attr_int(gid, 'peak_pair', s%peak_pair, err)
+      call attr_real0(gid, 'peak_pressure', s%peak_pressure, err)
+      call attr_real1(gid, 'peak_position', s%peak_xy, err)
+      call attr_real0(gid, 'contact_width', s%width, err)
+      call attr_real0(gid, 'contact_area', s%area, err)
+      call attr_real0(gid, 'approach', s%approach, err)
+      call attr_real0(gid, 'force_normal', s%force_n, err)
+      call attr_real0(gid, 'force_tangential', s%force_t, err)
+      call attr_int(gid, 'unloaded_pairs', s%nunloaded, err)
+      if (s%unloaded) call attr_real0(gid, 'residual_closure', s%residual_closure, err)
+      call attr_int(gid, 'beyond_range_pairs', s%nbeyond, err)
+      if (s%nbeyond > 0) then
+         call attr_int(gid, 'beyond_range_pair', s%beyond_pair, err)
+         call attr_real0(gid, 'beyond_range_reversal_pressure', s%beyond_pa, err)
+         call attr_real0(gid, 'beyond_range_p_star', s%beyond_pstar, err)
+      end if
+      call attr_real0(gid, 'worst_law_drift', s%worst_drift, err)
+      call attr_int(gid, 'worst_law_drift_increment', s%worst_drift_step, err)
+   end subroutine summary_interface
 
    !> Root attributes of the run: its plan (the solver, who chose it and
    !! why, the contact system, the order of the equations, the contact

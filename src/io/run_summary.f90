@@ -84,6 +84,23 @@ module run_summary
       real(dp) :: beyond_pa = 0.0_dp, beyond_pstar = 0.0_dp  !! its p_A and p*
       character(len=:), allocatable :: length_unit, stress_unit, force_unit
       character(len=:), allocatable :: estimate     !! the error estimate's line ('' if none), error_estimate_line
+      ! the figures of that line and of the lines after the summary (the result file's /summary)
+      logical :: estimated = .false.                !! the last step's body fields hold an error estimate
+      real(dp) :: estimated_error = 0.0_dp          !! its estimated error, fraction [-]
+      integer, allocatable :: zone_pairs(:)         !! (niface) closed pairs of each contact zone
+      real(dp), allocatable :: zone_width(:), zone_jump(:)  !! (niface) their width, pressure jump
+      real(dp), allocatable :: dissipated(:)        !! (niface) energy dissipated, cumulative ...
+      real(dp), allocatable :: dissipated_normal(:), dissipated_tangential(:)  !! ... and its parts
+      ! filled by the caller (run_report): the time, doubts, warnings, pretension sections
+      real(dp) :: seconds = 0.0_dp                  !! wall time of the run when the summary was made
+      integer :: warnings = 0                       !! warnings printed about the method
+      integer :: doubtful = 0                       !! doubtful increments (their count by kind below)
+      integer :: doubt_frozen = 0, doubt_drift = 0, doubt_violations = 0
+      integer :: first_doubtful = 0                 !! the first doubtful increment
+      character(len=:), allocatable :: doubts       !! the doubts' one-line summary ('' none)
+      character(len=:), allocatable :: doubt_details   !! one line per doubtful increment ('' none)
+      integer :: pretension_step = 0                !! the last increment with section forces (0: none)
+      real(dp), allocatable :: pretension_force(:), pretension_shortening(:)  !! (nsection) at it
    end type run_summary_t
 
 contains
@@ -130,6 +147,17 @@ contains
       call stage_table(m, solutions, drift, s)
       call unit_names(m, s)
       s%estimate = error_estimate_line(body, cf, s%length_unit)
+      s%estimated = body%estimated
+      if (s%estimated) s%estimated_error = body%estimated_error
+      if (s%estimated .and. allocated(cf%zone_width)) then
+         s%zone_width = cf%zone_width
+         s%zone_pairs = cf%zone_pairs
+         s%zone_jump = cf%zone_jump
+      end if
+      if (allocated(cf%dissipated_energy)) then
+         s%dissipated = cf%dissipated_energy
+         call dissipation_parts(m, cf, s%dissipated_normal, s%dissipated_tangential)
+      end if
       np = 0
       if (allocated(cf%pressure) .and. allocated(m%contact%pairs)) np = min(size(cf%pressure), size(m%contact%pairs))
       s%contact = np > 0
@@ -482,20 +510,14 @@ contains
       type(contact_fields_t), intent(in) :: cf
       type(cycle_table_t), intent(in) :: tab
       type(run_summary_t) :: s
-      real(dp) :: dn, dt
-      integer :: i, j, ic
+      real(dp), allocatable :: dn(:), dt(:)
+      integer :: i, ic
       call unit_names(m, s)
       write (u, '(a)') ' Energy dissipated by the contact laws, cumulative ('//s%force_unit//' x '//s%length_unit//'):'
+      call dissipation_parts(m, cf, dn, dt)
       do i = 1, size(cf%dissipated_energy)
-         dn = 0.0_dp
-         dt = 0.0_dp
-         do j = 1, min(size(m%contact%pairs), size(cf%dissipation_normal))
-            if (m%contact%pairs(j)%iface /= i) cycle
-            dn = dn + cf%dissipation_normal(j)
-            dt = dt + cf%dissipation_tangential(j)
-         end do
          write (u, '(a,i0,a,es12.4,a,es12.4,a,es12.4)') '  interface ', i, ': total', cf%dissipated_energy(i), &
-            ', normal hysteresis', dn, ', tangential (friction)', dt
+            ', normal hysteresis', dn(i), ', tangential (friction)', dt(i)
       end do
       if (tab%ncycle > 0) then
          write (u, '(a,i0,a)') ' Load cycles of the history: ', tab%ncycle, &
@@ -511,4 +533,23 @@ contains
          end do
       end if
    end subroutine write_dissipation
+
+   !> The energy dissipated by the contact laws on each interface, split into its normal
+   !! (hysteresis) and tangential (friction) parts: sums of the pairs' shares.
+   pure subroutine dissipation_parts(m, cf, dn, dt)
+      type(model_t), intent(in) :: m
+      type(contact_fields_t), intent(in) :: cf      !! contact fields (dissipated_energy allocated)
+      real(dp), allocatable, intent(out) :: dn(:), dt(:)   !! (niface) normal, tangential [force x length]
+      integer :: i, j
+      allocate (dn(size(cf%dissipated_energy)), dt(size(cf%dissipated_energy)))
+      do i = 1, size(cf%dissipated_energy)
+         dn(i) = 0.0_dp
+         dt(i) = 0.0_dp
+         do j = 1, min(size(m%contact%pairs), size(cf%dissipation_normal))
+            if (m%contact%pairs(j)%iface /= i) cycle
+            dn(i) = dn(i) + cf%dissipation_normal(j)
+            dt(i) = dt(i) + cf%dissipation_tangential(j)
+         end do
+      end do
+   end subroutine dissipation_parts
 end module run_summary

@@ -28,7 +28,7 @@ module records
    private
 
    public :: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t
-   public :: cycle_table_t
+   public :: cycle_table_t, numbering_report_t
    public :: DRIFT_LIMIT, MAX_DOUBT_LINES
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: STEP_CONVERGED, STEP_UNSETTLED
@@ -194,5 +194,19 @@ module records
       integer :: first = 0                          !! the first doubtful step
       character(len=:), allocatable :: details      !! one line per doubtful step (new-line separated)
    end type run_doubts_t
+
+   !> What the equation numbering did (driver's equation_numbering), for the
+   !! header of the listing and the terminal and the result file's /summary.
+   type :: numbering_report_t
+      character(len=:), allocatable :: method      !! 'RCM' or 'NONE'
+      character(len=:), allocatable :: reason      !! why this method
+      integer(i8) :: profile_before = 0            !! skyline length in the user's order
+      real(dp) :: mean_before = 0.0_dp
+      integer :: max_before = 0
+      integer(i8) :: profile_after = 0             !! skyline length in the order used
+      real(dp) :: mean_after = 0.0_dp
+      integer :: max_after = 0
+      character(len=:), allocatable :: solver_choice   !! the automatic choice of the solver and why ('' none)
+   end type numbering_report_t
 
 end module records

@@ -22,6 +22,7 @@ names: scripts and tests read results through this module.
     r.last                           # the last kept increment
     r.history("law_drift")           # an increment attribute over r.steps (NaN where absent)
     r.cycles                         # the group /cycles as a dict of arrays ({} when absent)
+    r.summary                        # the group /summary (the listing's closing summary) as a dict
     dataset("x.h5", "/mesh/cells_quad4")   # one dataset by its path (the XDMF sidecar names them)
     first_nonfinite("x.h5")          # the first dataset or attribute with a NaN or an infinity (None: none)
     audit("x.h5")                    # status, increments_completed, (group, readable, converged): a run cut short
@@ -220,6 +221,19 @@ class Result:
                 return {}
             g = f["cycles"]
             return {k: g[k][()] for k in g.keys() if isinstance(g[k], h5py.Dataset)}
+
+    @property
+    def summary(self):
+        """The closing summary of the run (group /summary: its attributes and its stage_*
+        datasets, docs/results-format.md "Run summary") as one dict; {} when the file has none
+        (a run that failed at its set-up, or a file written before the program wrote it)."""
+        with h5py.File(self.path, "r") as f:
+            if "summary" not in f:
+                return {}
+            g = f["summary"]
+            out = _attrs(g)
+            out.update({k: g[k][()] for k in g.keys() if isinstance(g[k], h5py.Dataset)})
+            return out
 
     def load_factors(self):
         """(nsteps, ncase) load factors of the kept increments."""
