@@ -35,7 +35,7 @@ module pretension_control
    use increment_attempt, only: analysis_t, attempt_t, attempt_increment
    implicit none
    private
-   public :: attempt_with_pretension, MAX_LOCK_ITER
+   public :: attempt_with_pretension, MAX_LOCK_ITER, locked_sections, hold_references, solve_small
 
    integer, parameter :: MAX_LOCK_ITER = 12    !! chord updates of one increment's lock
 
