@@ -55,8 +55,9 @@ contains
       integer, allocatable :: lk(:)
       real(dp), allocatable :: x(:), r(:), r0(:), jac(:, :), f0(:, :)
       real(dp) :: h, tol, scale
-      integer :: k, j, it, n, spent
+      integer :: j, it, n, spent
 
+      allocate (lk(0))      ! (gfortran 12 warns of an unset descriptor without it)
       lk = locked_sections(m, dlam)
       call hold_references(an, m, lk)
       n = size(lk)
