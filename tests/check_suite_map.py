@@ -52,16 +52,6 @@ EXEMPT = {
     "equation_numbering": "covered by test_renumber, which numbers the equations through it",
     "model_input": "covered by test_incremental and the validation suites, which read their "
                    "decks through it",
-    # pretension sections (docs/bolts.md)
-    "pretension_cards": "TODO: suite missing (the LOADS/PRETENSION cards, reached through "
-                        "tests/decks/bolt and tests/decks/bad/bad_pretension_* only)",
-    "pretension_section": "TODO: suite missing (reached end to end through tests/decks/bolt, "
-                          "checked against closed forms, and tests/decks/bad/bad_pretension_*)",
-    "pretension_assembly": "TODO: suite missing (reached end to end through tests/decks/bolt: "
-                           "section forces and shortenings against closed forms)",
-    "pretension_control": "TODO: suite missing (the lock, reached end to end through "
-                          "tests/decks/bolt and inputs/bolt_joint)",
-    "pretension_report": "TODO: suite missing (listing lines, reached through tests/decks/bolt)",
 }
 
 PROC_RE = re.compile(

@@ -8,6 +8,13 @@ service load F_A, to separation), PREFIX_cone.png (the joint interface's pressur
 preload, the largest service load, after unloading and at the end, with the contact radius) and
 PREFIX_joint.md (F_V, Phi, k_S, k_P, the separation load, and the diagram's points); prints the
 table.  docs/bolts.md explains the quantities (module k2d.joint).
+
+Past the separation: the separation load is bracketed by the last increment k whose joint
+interface carries force and the next one, and estimated inside that bracket by extrapolating the
+clamp force of the increments k-1 and k to zero; the chord load factor Phi_k = (F_S,k - F_V)/F_A,k
+gives the textbook F_V/(1 - Phi_k) beside it (the rough interface softens as it unloads: the
+initial Phi underestimates the separation load).  The pressure cone then also shows increment k,
+the last before the separation.
 """
 import argparse
 import os
@@ -28,6 +35,20 @@ def fmt(v, f="%.5g"):
     return "-" if v is None else f % v
 
 
+def separation(h):
+    """(k, k+1, estimate, chord Phi_k) of the first separation on a rising service load, or None."""
+    fa, fs, fk = h["F_A"], h["F_S"], h["F_K"]
+    for k1 in range(1, len(fa)):
+        k = k1 - 1
+        if fa[k1] > fa[k] and fk[k] > 0.0 and not fk[k1] > 0.0:
+            est = fa[k1]
+            if k >= 1 and fk[k - 1] > fk[k] and fa[k] > fa[k - 1]:
+                est = fa[k] + fk[k] * (fa[k] - fa[k - 1]) / (fk[k - 1] - fk[k])
+            phi = (fs[k] - fs[0]) / fa[k] if fa[k] > 0 else None
+            return k, k1, float(min(max(est, fa[k]), fa[k1])), phi
+    return None
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("result")
@@ -42,6 +63,9 @@ def main():
         print("plot_joint: %s has no pretension section" % args.result)
         return 2
     s = joint_summary(h)
+    sep = separation(h)
+    if sep is not None:
+        s["separation"] = sep[2]
     lines = ["| quantity | value |", "|---|---|",
              "| preload F_V | %s |" % fmt(s["F_V"]),
              "| section shortening at the preload | %s |" % fmt(s["delta_V"]),
@@ -50,7 +74,20 @@ def main():
              "| members' stiffness k_P | %s |" % fmt(s["k_P"]),
              "| separation load F_A (clamp force 0) | %s |" % (fmt(s["separation"]) if s["separation"] else
                                                              "not reached"),
-             "", "| increment | F_A | F_S | F_K | shortening |", "|---|---|---|---|---|"]
+             ]
+    if sep is not None:
+        k, k1, est, phi = sep
+        pred = s["F_V"] / (1.0 - phi) if phi is not None else None
+        lines += ["| separation between increments | %d (F_A = %.6g, F_K = %.4g) and %d "
+                  "(F_A = %.6g, F_K = 0) |" % (h["steps"][k], h["F_A"][k], h["F_K"][k],
+                                               h["steps"][k1], h["F_A"][k1]),
+                  "| chord load factor Φ_k = (F_S,k − F_V)/F_A,k | %s |" % fmt(phi, "%.4f"),
+                  "| F_V/(1 − Φ_k) | %s |" % fmt(pred),
+                  "| F_V/(1 − Φ), Φ the initial tangent | %s |"
+                  % fmt(s["F_V"] / (1.0 - s["Phi"])),
+                  "| largest F_S − F_A past the separation | %s |"
+                  % fmt(float(np.max(np.abs(h["F_S"][k1:] - h["F_A"][k1:]))), "%.3g")]
+    lines += ["", "| increment | F_A | F_S | F_K | shortening |", "|---|---|---|---|---|"]
     for k in range(len(h["F_S"])):
         lines.append("| %d | %.6g | %.8g | %.6g | %.6g |" % (h["steps"][k], h["F_A"][k], h["F_S"][k], h["F_K"][k],
                                                             h["shortening"][k]))
@@ -66,6 +103,7 @@ def main():
         fa = np.linspace(0.0, max(h["F_A"].max(), 1e-300), 50)
         ax.plot(fa, s["F_V"] + s["Phi"] * fa, "k:", lw=1, label="F_V + Φ F_A, Φ = %.3f" % s["Phi"])
         ax.plot(fa, s["F_V"] - (1.0 - s["Phi"]) * fa, "k--", lw=1, label="F_V - (1 - Φ) F_A")
+        ax.plot(fa, fa, "g-.", lw=1, label="F_S = F_A (separated)")
     if s["separation"]:
         ax.axvline(s["separation"], color="r", lw=1, label="separation F_A = %.4g" % s["separation"])
     ax.set_xlabel("service load F_A")
@@ -82,11 +120,22 @@ def main():
     picks = []
     i_pre = int(np.argmax(h["F_A"] > 1e-9 * max(h["F_S"].max(), 1e-300))) - 1
     picks.append(("preload", h["steps"][max(i_pre, 0)]))
-    picks.append(("largest F_A", h["steps"][int(np.argmax(h["F_A"]))]))
-    after = [k for k in range(int(np.argmax(h["F_A"])), len(h["F_A"])) if h["F_A"][k] <= 1e-9 * h["F_S"].max()]
+    fa = h["F_A"]
+    down = [k for k in range(len(fa) - 1) if fa[k + 1] < fa[k]]
+    i_top = down[0] if down else int(np.argmax(fa))
+    picks.append(("largest F_A of the first stroke", h["steps"][i_top]))
+    after = [k for k in range(i_top, len(fa)) if fa[k] <= 1e-9 * h["F_S"].max()]
     if after:
         picks.append(("unloaded", h["steps"][after[0]]))
-    picks.append(("end", h["steps"][-1]))
+    if sep is not None:
+        k = sep[0]
+        mid = [j for j in range(max(i_top, after[0] if after else 0), k)
+               if fa[j] >= 0.5 * (fa[i_top] + fa[k])]
+        if mid:
+            picks.append(("F_A = %.4g" % fa[mid[0]], h["steps"][mid[0]]))
+        picks.append(("last before separation, F_A = %.4g" % fa[k], h["steps"][k]))
+    else:
+        picks.append(("end", h["steps"][-1]))
     fig, ax = plt.subplots(figsize=(7, 5))
     seen = set()
     for label, n in picks:

@@ -44,6 +44,10 @@ module pretension_assembly
       logical :: have_jac = .false.
       real(dp), allocatable :: jac(:, :)        !! (n, n)
       real(dp), allocatable :: x_last(:)        !! (n) [force]
+      ! the reference nodes held in the matrix during locked increments (pretension_control): a
+      ! spring to ground of stiffness kground on each held reference node's axial equation
+      logical, allocatable :: held(:)           !! (n) the spring is in the solver's base
+      real(dp), allocatable :: kground(:)       !! (n) its stiffness: the sum of the springs
    end type pretension_run_t
 
 contains
@@ -62,8 +66,10 @@ contains
       pr%n = 0
       if (allocated(m%pretensions)) pr%n = size(m%pretensions)
       allocate (pr%sections(pr%n), pr%jac(pr%n, pr%n), pr%x_last(pr%n))
+      allocate (pr%held(pr%n), pr%kground(pr%n))
       pr%jac = 0.0_dp
       pr%x_last = 0.0_dp
+      pr%held = .false.
       c = [1.0_dp, -1.0_dp, -1.0_dp]
       do k = 1, pr%n
          associate (p => m%pretensions(k))
@@ -78,6 +84,7 @@ contains
                ksum = ksum + max(diag(map%id(ax, p%nodes(i))), diag(map%id(ax, p%copies(i))))
             end do
             pr%sections(k)%kp = PENALTY*ksum*share/sum(share)
+            pr%kground(k) = sum(pr%sections(k)%kp)
             do i = 1, size(p%nodes)
                if (.not. (pr%sections(k)%kp(i) > 0.0_dp)) cycle
                ke = pr%sections(k)%kp(i)*spread(c, 2, 3)*spread(c, 1, 3)

@@ -13,6 +13,17 @@
 !! linear and the contact laws piecewise smooth, so without state changes r is
 !! affine in x and one update is exact; every attempt starts from the
 !! committed state, and the step's solutions count those of all attempts.
+!!
+!! In a locked increment each locked section's reference node is also held in
+!! the matrix by a spring to ground (hold_references: stiffness kground, the sum
+!! of the section's springs, put into the solver's base and taken out again when
+!! the section's force is changed).  Without it the reference node is free, and
+!! once the clamped parts separate the bolt's part beyond the cut is joined to
+!! the rest only through the section: a mechanism (a singular system).  The
+!! spring does not decide the lock -- the chord iteration on x does, whatever
+!! kground -- and its reaction -kground du_r is a holding force like x: both go
+!! into fext_new at the reference node, so that the springs across the section
+!! carry exactly the forces on it (the force balance of the step).
 module pretension_control
    use kinds, only: dp
    use errors, only: status_t, STAT_NO_CONVERGENCE
@@ -24,7 +35,7 @@ module pretension_control
    use increment_attempt, only: analysis_t, attempt_t, attempt_increment
    implicit none
    private
-   public :: attempt_with_pretension, MAX_LOCK_ITER
+   public :: attempt_with_pretension, MAX_LOCK_ITER, locked_sections, hold_references, solve_small
 
    integer, parameter :: MAX_LOCK_ITER = 12    !! chord updates of one increment's lock
 
@@ -44,16 +55,11 @@ contains
       integer, allocatable :: lk(:)
       real(dp), allocatable :: x(:), r(:), r0(:), jac(:, :), f0(:, :)
       real(dp) :: h, tol, scale
-      integer :: k, j, it, n, spent
+      integer :: j, it, n, spent
 
-      lk = [integer ::]
-      if (allocated(m%pretensions)) then
-         do k = 1, size(m%pretensions)
-            if (m%pretensions(k)%mode == PRETENSION_LOCK .and. .not. (abs(dlam(m%pretensions(k)%icase)) > 0.0_dp)) then
-               lk = [lk, k]
-            end if
-         end do
-      end if
+      allocate (lk(0))      ! (gfortran 12 warns of an unset descriptor without it)
+      lk = locked_sections(m, dlam)
+      call hold_references(an, m, lk)
       n = size(lk)
       if (n == 0) then
          call attempt_increment(an, m, st, dlam, carry, fext_new, first, att, status)
@@ -124,6 +130,11 @@ contains
          rr = 0.0_dp
          if (.not. status%ok()) return
          do q = 1, n
+            ! the ground spring's reaction: a holding force on the reference node
+            associate (p => m%pretensions(lk(q)))
+               fext_new(p%axis, p%ref) = fext_new(p%axis, p%ref) &
+                                         - an%pret%kground(lk(q))*att%du(p%axis, p%ref)
+            end associate
             rr(q) = section_shortening(m%pretensions(lk(q)), an%pret%sections(lk(q))%w, att%du)
          end do
       end subroutine try
@@ -132,6 +143,50 @@ contains
          done = maxval(abs(rr)) <= tol
       end function done
    end subroutine attempt_with_pretension
+
+   !> The LOCK sections whose case's factor the increment holds (dlam 0).
+   pure function locked_sections(m, dlam) result(lk)
+      type(model_t), intent(in) :: m
+      real(dp), intent(in) :: dlam(:)
+      integer, allocatable :: lk(:)
+      integer :: k
+      lk = [integer ::]
+      if (.not. allocated(m%pretensions)) return
+      do k = 1, size(m%pretensions)
+         associate (p => m%pretensions(k))
+            if (p%mode == PRETENSION_LOCK .and. .not. (abs(dlam(p%icase)) > 0.0_dp)) lk = [lk, k]
+         end associate
+      end do
+   end function locked_sections
+
+   !> Hold the reference nodes of the sections lk (and only those) in the matrix:
+   !! a spring to ground of stiffness kground on each one's axial equation, put
+   !! into (or taken out of) the solver's base when the set changes; the system
+   !! is then refactorized at the next solution.
+   subroutine hold_references(an, m, lk)
+      type(analysis_t), intent(inout) :: an
+      type(model_t), intent(in) :: m
+      integer, intent(in) :: lk(:)
+      logical, allocatable :: want(:)
+      real(dp) :: ke(1, 1)
+      integer :: k
+      if (an%pret%n == 0) return
+      allocate (want(an%pret%n))
+      want = .false.
+      want(lk) = .true.
+      if (all(want .eqv. an%pret%held)) return
+      call an%sys%solver%restore_base()
+      do k = 1, an%pret%n
+         if (want(k) .eqv. an%pret%held(k)) cycle
+         ke = merge(1.0_dp, -1.0_dp, want(k))*an%pret%kground(k)
+         associate (p => m%pretensions(k))
+            call an%sys%solver%add_element([an%map%id(p%axis, p%ref)], ke)
+         end associate
+      end do
+      call an%sys%solver%store_base()
+      an%pret%held = want
+      an%system_current = .false.
+   end subroutine hold_references
 
    !> x with a x = b for a small dense a (Gaussian elimination, partial pivoting).
    pure function solve_small(a, b) result(x)
