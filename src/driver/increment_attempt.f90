@@ -319,8 +319,8 @@ contains
          ! largest displacement increment of the run so far)
          dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/ &
                  max(maxval(abs(att%du)), merge(att%duscale, 0.0_dp, hold), tiny(1.0_dp))
-         ! (the part of it that the round-off of the force that drove it explains is no
-         ! error of the iterate: correction_floor)
+         ! (a correction that round-off alone drove is no error of the iterate:
+         ! roundoff_share)
          if (.not. slip_reg) dnorm = dnorm*(1.0_dp - rshare)
          ddu = 0.0_dp
          ! ... against the actual ones, after the mode checks
@@ -392,21 +392,22 @@ contains
       end subroutine update_modes
    end subroutine attempt_pass
 
-   !> The share of the out-of-balance force of an evaluation that is round-off:
-   !! the floor (att%rtol less TOLR, module roundoff) over the force, at most 1.
-   !! The next solution's correction is linear in that force, and this share of
-   !! it is the response to round-off, no error of the iterate: where a mode of
-   !! the bodies has a stiffness small against the forces that cancel (a body at
-   !! rest on one pair at the zero-force end of a convex branch, its chord
-   !! stiffness vanishing), it moves the body by more than TOLU of the increment
-   !! after every solution, the force staying at its floor, and only the rest of
-   !! the correction is held to TOLU (docs/contact.md, "The correction's floor").
-   !! A force far above its floor leaves the correction as it is.
+   !> 1 when the out-of-balance force of an evaluation is within its round-off
+   !! floor (att%rtol less TOLR, module roundoff), else 0.  The next solution's
+   !! correction is linear in that force: driven by round-off alone, it is the
+   !! response of the bodies to round-off, no error of the iterate.  Where a mode
+   !! of the bodies has a stiffness small against the forces that cancel (a body
+   !! at rest on one pair at the zero-force end of a convex branch, its chord
+   !! stiffness vanishing), that response moves the body by more than TOLU of the
+   !! increment after every solution, the force staying at its floor; such a
+   !! correction is not held to TOLU (docs/contact.md, "The correction's floor").
+   !! A force above its floor (TOLR's part of the limit included) leaves the
+   !! correction's test as it is.
    pure real(dp) function roundoff_share(att, tol) result(share)
       type(attempt_t), intent(in) :: att
       real(dp), intent(in) :: tol          !! CONTACT CONVERGE TOLR
       share = 0.0_dp
-      if (att%rnorm > 0.0_dp) share = min(max(att%rtol - tol, 0.0_dp)/att%rnorm, 1.0_dp)
+      if (att%rnorm <= att%rtol - tol) share = 1.0_dp
    end function roundoff_share
 
    !> Put the springs of the current modes into the contact system.
