@@ -273,9 +273,10 @@ contains
          if (.not. md%closed) then
             if (u > md%uthr .and. may_switch) then
                md%closed = .true.
-               ! (a pair closed at the start of the increment that an iterate opened closes
-               ! again from its committed state: the increment's law starts there)
-               md%newly_closed = .not. s%closed
+               ! (RETURN: a pair closed at the start of the increment that an iterate opened
+               ! closes again from its committed state: the increment's law starts there;
+               ! EXPLICIT keeps the paper's secant of the penetration)
+               md%newly_closed = .not. (returning .and. s%closed)
                ! the secant of its penetration; below the floor pressure, the secant to the
                ! floor point of its branch (p_min over the penetration itself would grow
                ! without bound as the penetration found by the trial solve goes to zero)
