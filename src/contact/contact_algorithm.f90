@@ -33,7 +33,7 @@ module contact_algorithm
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
              pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
              start_force_normal, frozen_pairs, tangential_drift, drop_regularisation, regularise_slip, &
-             anchor_regularisation, release_anchors
+             anchor_regularisation, release_anchors, settle_frozen
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: MAX_SWITCH
 
@@ -118,6 +118,36 @@ contains
          call evaluate_ideal(cdef, st, j, changed(j))
       end do
    end subroutine evaluate_pairs
+
+   !> At a converged solution, the rough pairs frozen by the guard against
+   !! chatter (MAX_SWITCH mode changes) evaluated once more as if free to
+   !! change their modes, from the modes and forces they have: a pair that
+   !! keeps its mode is `settled`, its frozen mode the one its displacements
+   !! give (forces on the law, state consistent), and it is no doubt of the
+   !! increment (frozen_pairs); one that would change it stays frozen.  Nothing
+   !! of the pairs' modes or forces changes here.
+   pure subroutine settle_frozen(cdef, st, first)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      logical, intent(in) :: first              !! first increment (secant iteration option)
+      type(pair_mode_t) :: md
+      type(rough_outcome_t) :: r
+      integer :: k, j
+      do k = 1, size(st%rough)
+         j = st%rough(k)
+         if (st%md(j)%nswitch < MAX_SWITCH) cycle
+         md = st%md(j)
+         md%nswitch = 0
+         r = evaluate_rough_pair(cdef%ifaces(cdef%pairs(j)%iface), cdef%pairs(j), st%kloc(j), &
+                                 cdef%opts, st%s(j), md, st%dun(j), st%dut(j), st%fn(j), st%fn(j), &
+                                 cdef%opts%p_min_ratio*st%p_start, first, st%regularise, &
+                                 st%regularise_slip)
+         ! (a pair on its secant changes its tangential state without a mode change)
+         st%md(j)%settled = .not. r%changed .and. (r%md%closed .eqv. md%closed) .and. &
+                            (r%md%on_unloading .eqv. md%on_unloading) .and. &
+                            r%md%tstate == md%tstate .and. r%md%tsign == md%tsign
+      end do
+   end subroutine settle_frozen
 
    !> RETURN, the second pass of an increment whose system turned singular
    !! (regularise_slip), once the out-of-balance force is within its limit and

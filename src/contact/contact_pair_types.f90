@@ -57,6 +57,9 @@ module contact_pair_types
       real(dp) :: uthr = 0.0_dp           !! closure at which the pair (re)closes
       real(dp) :: mu = 0.0_dp
       integer :: nswitch = 0              !! mode changes in the increment so far (see MAX_SWITCH)
+      logical :: settled = .false.        !! frozen (MAX_SWITCH), but free to change its mode
+                                          !! it keeps it at the converged solution
+                                          !! (contact_algorithm's settle_frozen)
       integer :: tvisited = 0             !! RETURN: the tangential states (tstate, tsign) met in the
                                           !! increment, one bit each (tstate_bit)
       logical :: tstable = .false.        !! RETURN: back in a state met before: the secant stiffness of

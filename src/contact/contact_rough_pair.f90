@@ -273,7 +273,10 @@ contains
          if (.not. md%closed) then
             if (u > md%uthr .and. may_switch) then
                md%closed = .true.
-               md%newly_closed = .true.
+               ! (RETURN: a pair closed at the start of the increment that an iterate opened
+               ! closes again from its committed state: the increment's law starts there;
+               ! EXPLICIT keeps the paper's secant of the penetration)
+               md%newly_closed = .not. (returning .and. s%closed)
                ! the secant of its penetration; below the floor pressure, the secant to the
                ! floor point of its branch (p_min over the penetration itself would grow
                ! without bound as the penetration found by the trial solve goes to zero)
@@ -288,7 +291,9 @@ contains
                   p = pfloor
                   md%kn = pr%area*p/max(branch_closure(ifc, md, p) - md%uthr, tiny(1.0_dp))
                end if
-               md%kte = pr%area*tangential_stiffness(p, ifc%s, ifc%r_t(kloc))
+               ! (K_T^e of the pressure at which it closes; one closed at the start keeps the
+               ! increment's, from its committed pressure)
+               if (md%newly_closed) md%kte = pr%area*tangential_stiffness(p, ifc%s, ifc%r_t(kloc))
                md%tstate = TS_STICK
                md%tsign = 0
                md%xb = 0.0_dp
@@ -517,7 +522,8 @@ contains
          tsg = 0
       end if
       md%tvisited = ior(md%tvisited, tstate_bit(md%tstate, md%tsign))
-      if ((itrial /= md%tstate .or. tsg /= md%tsign) .and. may_switch) then
+      ! (a pair on its secant follows the law's state without a mode change: also when frozen)
+      if ((itrial /= md%tstate .or. tsg /= md%tsign) .and. (may_switch .or. md%tstable)) then
          md%tstate = itrial
          md%tsign = tsg
          if (.not. md%tstable) then

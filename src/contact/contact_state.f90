@@ -298,14 +298,19 @@ contains
    end subroutine check_invariants
 
    !> The rough pairs whose modes were frozen in the current increment: they
-   !! changed their modes MAX_SWITCH times and kept the last one (chatter).
-   !! Ideal pairs are never frozen (their active set iterates to the end).
+   !! changed their modes MAX_SWITCH times and kept the last one (chatter),
+   !! and at the end of the increment, free to change it, would have left it
+   !! (a pair whose frozen mode is the one its final displacements give is on
+   !! its law like any other: pair_mode_t%settled, contact_algorithm's
+   !! settle_frozen).  Ideal pairs are never frozen (their active set iterates
+   !! to the end).
    pure function frozen_pairs(cdef, st) result(list)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(in) :: st
       integer, allocatable :: list(:)      !! pair numbers, ascending
       integer :: j
       list = pack([(j, j=1, size(st%md))], [(st%md(j)%nswitch >= MAX_SWITCH .and. &
+                                             .not. st%md(j)%settled .and. &
                                              .not. is_ideal(cdef, j), j=1, size(st%md))])
    end function frozen_pairs
 

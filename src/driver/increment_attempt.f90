@@ -18,7 +18,7 @@ module increment_attempt
    use contact_types, only: contact_options_t, contact_pair_t
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, augment_multipliers, &
                                 drop_regularisation, regularise_slip, &
-                                anchor_regularisation, release_anchors
+                                anchor_regularisation, release_anchors, settle_frozen
    use contact_start, only: increment_pressure
    use model, only: model_t
    use step_audit, only: check_finite_springs
@@ -241,7 +241,7 @@ contains
       real(dp), allocatable :: rhs(:), ddu(:, :), rvec(:, :), rpred(:, :)
       logical, allocatable :: changed(:)
       integer :: iter, maxit
-      real(dp) :: fscale, dnorm
+      real(dp) :: fscale, dnorm, rshare
       logical :: need_matrix, done, again, newton, hold, anchored
 
       allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), rpred(an%springs%nd, an%npair), &
@@ -260,6 +260,7 @@ contains
       att%dnorm = 0.0_dp
       hold = .false.
       anchored = .false.
+      rshare = 0.0_dp
       call load_increment(an%coup, an%map, an%fcase, an%ucase, an%restrained, dlam, carry, rhs, att%du)
       fscale = max(maxval([0.0_dp, abs(rhs)]), maxval(abs(fext_new)), 1.0e-300_dp)
       ! spring forces and modes at the start of the increment
@@ -318,6 +319,9 @@ contains
          ! largest displacement increment of the run so far)
          dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/ &
                  max(maxval(abs(att%du)), merge(att%duscale, 0.0_dp, hold), tiny(1.0_dp))
+         ! (a correction that round-off alone drove is no error of the iterate:
+         ! roundoff_share)
+         if (.not. slip_reg) dnorm = dnorm*(1.0_dp - rshare)
          ddu = 0.0_dp
          ! ... against the actual ones, after the mode checks
          call update_modes(again)
@@ -350,6 +354,7 @@ contains
             ! tolerance, else an Uzawa update and the forces of the new multipliers
             ! drive the next solution
             call augment_multipliers(m%contact, st, done)
+            rshare = 0.0_dp     ! (the multipliers' forces drive the next solution)
             if (done) then
                att%converged = .true.
                exit
@@ -359,6 +364,8 @@ contains
          end if
          need_matrix = newton .and. .not. an%modified
       end do
+      ! a pair frozen by the guard against chatter whose mode fits the solution is no doubt
+      if (att%converged .and. an%has_contact) call settle_frozen(m%contact, st, first)
       att%carry = rhs
       att%fscale = fscale
       if (att%converged .and. .not. hold) att%duscale = max(att%duscale, maxval(abs(att%du)))
@@ -375,12 +382,33 @@ contains
          att%nchanged = count(changed)
          att%first_changed = findloc(changed, .true., dim=1)
          again = att%changing
+         ! the share of the out-of-balance force that is round-off, for the next correction
+         rshare = 0.0_dp
+         if (.not. again) rshare = roundoff_share(att, m%contact%opts%tol_residual)
          if (again) then
             att%repeats = att%repeats + 1
             need_matrix = .true.
          end if
       end subroutine update_modes
    end subroutine attempt_pass
+
+   !> 1 when the out-of-balance force of an evaluation is within its round-off
+   !! floor (att%rtol less TOLR, module roundoff), else 0.  The next solution's
+   !! correction is linear in that force: driven by round-off alone, it is the
+   !! response of the bodies to round-off, no error of the iterate.  Where a mode
+   !! of the bodies has a stiffness small against the forces that cancel (a body
+   !! at rest on one pair at the zero-force end of a convex branch, its chord
+   !! stiffness vanishing), that response moves the body by more than TOLU of the
+   !! increment after every solution, the force staying at its floor; such a
+   !! correction is not held to TOLU (docs/contact.md, "The correction's floor").
+   !! A force above its floor (TOLR's part of the limit included) leaves the
+   !! correction's test as it is.
+   pure real(dp) function roundoff_share(att, tol) result(share)
+      type(attempt_t), intent(in) :: att
+      real(dp), intent(in) :: tol          !! CONTACT CONVERGE TOLR
+      share = 0.0_dp
+      if (att%rnorm <= att%rtol - tol) share = 1.0_dp
+   end function roundoff_share
 
    !> Put the springs of the current modes into the contact system.
    subroutine set_system(an, m, st, status)
