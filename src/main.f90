@@ -8,7 +8,8 @@
 !! are named).
 program kontakt2d
    use kinds, only: stdout, stderr
-   use errors, only: error_list_t, status_t, terminate, EXIT_OK, EXIT_INPUT, EXIT_NUMERICAL, EXIT_DOUBTFUL, STAT_INPUT
+   use errors, only: error_list_t, status_t, terminate, EXIT_OK, EXIT_INPUT, EXIT_NUMERICAL, &
+         EXIT_DOUBTFUL, STAT_INPUT
    use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_ptr, c_associated
    use strings, only: upper, basename, strip_extension
    use model, only: model_t
@@ -27,7 +28,8 @@ program kontakt2d
    character(len=:), allocatable :: deck, arg
    integer :: i, nargs
 
-   call parallel_init()     ! MPI runs: rank 0 runs the analysis, the others serve MUMPS (docs/parallel.md)
+   call parallel_init()     ! MPI runs: rank 0 runs the analysis, the
+                            ! others serve MUMPS (docs/parallel.md)
    opts%results_path = ''
    opts%listing_path = ''
    opts%solver_name = ''
@@ -51,7 +53,8 @@ program kontakt2d
       case ('-s', '--solver')
          opts%solver_name = upper(option_value(i, arg))
          if (solver_code(opts%solver_name) == SOLVER_UNSET) then
-            call usage_error('--solver expects skyline, umfpack, mumps or dense, found "'//get_arg(i)//'"')
+            call usage_error('--solver expects skyline, umfpack, mumps or dense, found "'// &
+                             get_arg(i)//'"')
          end if
       case ('-q', '--quiet')
          opts%quiet = .true.
@@ -59,7 +62,9 @@ program kontakt2d
          if (len(arg) > 0) then
             if (arg(1:1) == '-') call usage_error('unknown option "'//arg//'"')
          end if
-         if (len(deck) > 0) call usage_error('only one deck may be given (found "'//deck//'" and "'//arg//'")')
+         if (len(deck) > 0) then
+            call usage_error('only one deck may be given (found "'//deck//'" and "'//arg//'")')
+         end if
          deck = arg
       end select
    end do
@@ -69,7 +74,8 @@ program kontakt2d
    if (warns%count() > 0) call warns%print()
    if (errs%count() > 0) then
       call errs%print()
-      write (stderr, '(a,i0,a)') 'kontakt2d: ', errs%count(), ' error(s) in the input; nothing was computed'
+      write (stderr, '(a,i0,a)') 'kontakt2d: ', errs%count(), &
+            ' error(s) in the input; nothing was computed'
       call terminate(EXIT_INPUT)
    end if
 
@@ -108,11 +114,14 @@ contains
       character(len=*), intent(in) :: deck
       type(model_t), intent(in) :: m
       character(len=*), intent(in) :: what, out, option
-      if (same_file(out, deck)) call usage_error('the '//what//' "'//out//'" is the input deck: '// &
+      if (same_file(out, deck)) call usage_error('the '//what//' "'//out// &
+                                                 '" is the input deck: '// &
                                                  'give another path with '//option)
       if (allocated(m%mesh_file)) then
-         if (same_file(out, m%mesh_file)) call usage_error('the '//what//' "'//out//'" is the mesh file '// &
-                                                           'of the deck: give another path with '//option)
+         if (same_file(out, m%mesh_file)) call usage_error('the '//what//' "'//out// &
+                                                           '" is the mesh file '// &
+                                                           'of the deck: give another path &
+                                                           &with '//option)
       end if
    end subroutine refuse_input
 
@@ -177,27 +186,41 @@ contains
    subroutine usage_error(msg)
       character(len=*), intent(in) :: msg
       write (stderr, '(a)') 'kontakt2d: '//msg
-      write (stderr, '(a)') 'usage: kontakt2d DECK [-o FILE.h5] [-l FILE.lis] [-s SOLVER] [-q]   (--help for details)'
+      write (stderr, '(a)') &
+            'usage: kontakt2d DECK [-o FILE.h5] [-l FILE.lis] [-s SOLVER] [-q]   (--help for &
+            &details)'
       call terminate(EXIT_INPUT)
    end subroutine usage_error
 
    subroutine print_help()
-      write (stdout, '(a)') 'Kontakt2D '//K2D_VERSION//' - static plane and axisymmetric contact of rough elastic bodies'
+      write (stdout, '(a)') 'Kontakt2D '//K2D_VERSION// &
+            ' - static plane and axisymmetric contact of rough elastic bodies'
       write (stdout, '(a)') ''
       write (stdout, '(a)') 'usage: kontakt2d DECK [options]'
       write (stdout, '(a)') ''
-      write (stdout, '(a)') '  DECK                  fixed-format input deck (see docs/deck-format.md)'
-      write (stdout, '(a)') '  -o, --output FILE     HDF5 result file (default: <deck name>.h5 in the working directory)'
-      write (stdout, '(a)') '  -l, --listing FILE    printed listing (default: results name with .lis; OPTIONS LISTING NONE'
+      write (stdout, '(a)') &
+            '  DECK                  fixed-format input deck (see docs/deck-format.md)'
+      write (stdout, '(a)') &
+            '  -o, --output FILE     HDF5 result file (default: <deck name>.h5 in the working &
+            &directory)'
+      write (stdout, '(a)') &
+            '  -l, --listing FILE    printed listing (default: results name with .lis; OPTIONS &
+            &LISTING NONE'
       write (stdout, '(a)') '                        in the deck suppresses it)'
-      write (stdout, '(a)') '  -s, --solver NAME     override the deck''s solver: skyline, umfpack, mumps or dense'
+      write (stdout, '(a)') &
+            '  -s, --solver NAME     override the deck''s solver: skyline, umfpack, mumps or dense'
       write (stdout, '(a)') '  -q, --quiet           print nothing but errors'
       write (stdout, '(a)') '  -V, --version         print the version and exit'
       write (stdout, '(a)') '  -h, --help            print this help and exit'
       write (stdout, '(a)') ''
-      write (stdout, '(a)') 'exit codes: 0 success, 1 internal error, 2 input error (deck or command line),'
-      write (stdout, '(a)') '            3 numerical failure (finished increments are kept in the result file),'
-      write (stdout, '(a)') '            4 completed with doubts (frozen contact states, law drift, invariant violations:'
-      write (stdout, '(a)') '              the increments and pairs are named; result file status "doubtful")'
+      write (stdout, '(a)') &
+            'exit codes: 0 success, 1 internal error, 2 input error (deck or command line),'
+      write (stdout, '(a)') &
+            '            3 numerical failure (finished increments are kept in the result file),'
+      write (stdout, '(a)') &
+            '            4 completed with doubts (frozen contact states, law drift, invariant &
+            &violations:'
+      write (stdout, '(a)') &
+            '              the increments and pairs are named; result file status "doubtful")'
    end subroutine print_help
 end program kontakt2d

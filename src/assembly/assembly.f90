@@ -58,7 +58,8 @@ contains
       case (solid_bad_radius)
          s = 'a Gauss point lies at radius r <= 0 in an axisymmetric analysis'
       case default
-         s = 'non-positive Jacobian determinant at Gauss point '//itoa(ierr)//' (distorted or inverted element)'
+         s = 'non-positive Jacobian determinant at Gauss point '//itoa(ierr)// &
+               ' (distorted or inverted element)'
       end select
    end function element_error
 
@@ -72,7 +73,8 @@ contains
       type(coupling_t), intent(out) :: coup
       type(status_t), intent(inout) :: status
       real(dp), intent(out), optional :: diag(:)   !! (neq) diagonal of K_AB
-      real(dp), intent(out), optional :: absrow(:) !! (neq) sum of |k_ij| over the elements and j (roundoff)
+      real(dp), intent(out), optional :: absrow(:) !! (neq) sum of |k_ij| over the
+                                                   !! elements and j (roundoff)
       real(dp) :: estif(2*MAX_NODE, 2*MAX_NODE), elcod(2, MAX_NODE)
       integer :: ieq(2*MAX_NODE), gdof(2*MAX_NODE), ie, nn, nevab, ierr, i, j
       integer :: imat
@@ -85,7 +87,8 @@ contains
          nn = m%nnode_e(ie)
          imat = m%matno(ie)
          elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
-         call element_stiffness(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
+         call element_stiffness(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, &
+                                m%mats(imat)%poiss, &
                                 m%mats(imat)%thick, m%ngaus, estif(1:2*nn, 1:2*nn), ierr)
          if (ierr /= 0) then
             call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//': '//element_error(ierr))
@@ -139,7 +142,8 @@ contains
    subroutine assemble_load_cases(m, fcase, ucase, status)
       type(model_t), intent(in) :: m
       real(dp), allocatable, intent(out) :: fcase(:, :, :)  !! (2, npoin, ncase) external forces
-      real(dp), allocatable, intent(out) :: ucase(:, :, :)  !! (2, npoin, ncase) prescribed displacements
+      real(dp), allocatable, intent(out) :: ucase(:, :, :)  !! (2, npoin, ncase) prescribed
+                                                            !! displacements
       type(status_t), intent(inout) :: status
       real(dp) :: eforce(2*MAX_NODE), elcod(2, MAX_NODE), edcod(2, 3)
       integer :: k, ie, nn, ierr, imat, ic, ip, j
@@ -172,7 +176,8 @@ contains
                if (b%imat /= 0 .and. b%imat /= imat) cycle
                nn = m%nnode_e(ie)
                elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
-               call body_load(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%thick, b%b(1), b%b(2), m%ngaus, &
+               call body_load(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%thick, b%b(1), b%b(2), &
+                              m%ngaus, &
                               eforce(1:2*nn), ierr)
                if (ierr /= 0) then
                   call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//': '//element_error(ierr))
@@ -200,10 +205,12 @@ contains
       type(coupling_t), intent(in) :: coup
       type(dof_map_t), intent(in) :: map
       real(dp), intent(in) :: fcase(:, :, :)  !! (2, npoin, ncase) external forces at factor 1
-      real(dp), intent(in) :: ucase(:, :, :)  !! (2, npoin, ncase) prescribed displacements at factor 1
+      real(dp), intent(in) :: ucase(:, :, :)  !! (2, npoin, ncase) prescribed
+                                              !! displacements at factor 1
       logical, intent(in) :: restrained(:, :) !! (2, npoin)
       real(dp), intent(in) :: dlam(:)         !! (ncase) increments of the load factors
-      real(dp), intent(in) :: carry(:)        !! (neq) out-of-balance force carried from the last increment
+      real(dp), intent(in) :: carry(:)        !! (neq) out-of-balance force carried
+                                              !! from the last increment
       real(dp), intent(out) :: rhs(:)         !! (neq)
       real(dp), intent(inout) :: du(:, :)     !! (2, npoin) zero in, prescribed increments out
       integer :: ic, ip, idof
@@ -213,7 +220,9 @@ contains
       end do
       do ip = 1, size(du, 2)
          do idof = 1, 2
-            if (map%id(idof, ip) > 0) rhs(map%id(idof, ip)) = rhs(map%id(idof, ip)) + sum(dlam*fcase(idof, ip, :))
+            if (map%id(idof, ip) > 0) then
+               rhs(map%id(idof, ip)) = rhs(map%id(idof, ip)) + sum(dlam*fcase(idof, ip, :))
+            end if
          end do
       end do
       call subtract_prescribed(coup, map, du, rhs)
@@ -223,7 +232,8 @@ contains
    pure subroutine subtract_prescribed(coup, map, u, rhs)
       type(coupling_t), intent(in) :: coup
       type(dof_map_t), intent(in) :: map
-      real(dp), intent(in) :: u(:, :)        !! (2, npoin) displacements, only restrained entries used
+      real(dp), intent(in) :: u(:, :)        !! (2, npoin) displacements,
+                                             !! only restrained entries used
       real(dp), intent(inout) :: rhs(:)      !! (neq)
       integer :: k, ieq, jres
       do k = 1, coup%n
@@ -248,7 +258,8 @@ contains
          if (map%id(mod(irow - 1, 2) + 1, (irow - 1)/2 + 1) >= 0) cycle
          icol = coup%col(k)
          fr(mod(irow - 1, 2) + 1, (irow - 1)/2 + 1) = fr(mod(irow - 1, 2) + 1, (irow - 1)/2 + 1) + &
-                                                     coup%val(k)*u(mod(icol - 1, 2) + 1, (icol - 1)/2 + 1)
+                                                     coup%val(k)*u(mod(icol - 1, 2) + 1, &
+                                                                   (icol - 1)/2 + 1)
       end do
    end subroutine restrained_forces
 end module assembly

@@ -19,10 +19,12 @@ module body_fields
    use quadrature, only: max_gp
    use solid2d, only: element_stresses
    use assembly, only: coupling_t, restrained_forces, element_error
-   use error_estimate, only: estimate_error   ! re-exported: the estimate of the fields recovered here
+   use error_estimate, only: estimate_error   ! re-exported: the estimate
+                                              ! of the fields recovered here
    implicit none
    private
-   public :: recover_stresses, update_reactions, number_bodies, body_imbalance, zero_fields, stiffness_range
+   public :: recover_stresses, update_reactions, number_bodies, body_imbalance, zero_fields, &
+         stiffness_range
    public :: estimate_error
 
 contains
@@ -34,7 +36,8 @@ contains
       type(model_t), intent(in) :: m
       type(body_fields_t), intent(inout) :: body
       type(status_t), intent(inout) :: status
-      real(dp) :: elcod(2, MAX_NODE), eldis(2*MAX_NODE), xyg(2, max_gp), sg(4, max_gp), sn(4, MAX_NODE)
+      real(dp) :: elcod(2, MAX_NODE), eldis(2*MAX_NODE), xyg(2, max_gp), sg(4, max_gp), &
+            sn(4, MAX_NODE)
       real(dp), allocatable :: cnt(:)
       integer :: ie, nn, ngp, ierr, k, imat
 
@@ -50,10 +53,12 @@ contains
          do k = 1, nn
             eldis(2*k - 1:2*k) = body%disp(:, m%lnods(k, ie))
          end do
-         call element_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
+         call element_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, &
+                               m%mats(imat)%poiss, &
                                m%ngaus, eldis(1:2*nn), ngp, xyg, sg, sn(:, 1:nn), ierr)
          if (ierr /= 0) then
-            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (stress recovery): '//element_error(ierr))
+            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//' (stress recovery): '// &
+                            element_error(ierr))
             return
          end if
          body%xygp(:, body%gp_start(ie):body%gp_start(ie + 1) - 1) = xyg(:, 1:ngp)
@@ -106,15 +111,21 @@ contains
       if (size(diag) == 0) return
       if (.not. all(ieee_is_finite(diag))) then
          ieq = findloc(ieee_is_finite(diag), .false., 1)
-         call status%set(STAT_NONFINITE, 'the bodies'' stiffness matrix holds non-finite numbers (its diagonal '// &
-                         'term at '//map%describe(ieq)//'): a material''s E or thickness overflows double '// &
+         call status%set(STAT_NONFINITE, &
+                         'the bodies'' stiffness matrix holds non-finite numbers (its diagonal '// &
+                         'term at '//map%describe(ieq)// &
+                         '): a material''s E or thickness overflows double '// &
                          'precision; check them and their units')
       else if (.not. status%ok()) then
          ieq = maxloc(abs(diag), 1)
          if (abs(diag(ieq)) <= sqrt(huge(1.0_dp))) return
-         call status%set(STAT_NONFINITE, 'the bodies'' stiffness matrix is out of the range of double precision '// &
-                         '(its diagonal term '//rtoa(diag(ieq))//' at '//map%describe(ieq)//' exceeds sqrt(huge) = '// &
-                         rtoa(sqrt(huge(1.0_dp)))//'; the factorization reported: '//status%message// &
+         call status%set(STAT_NONFINITE, &
+                         'the bodies'' stiffness matrix is out of the range of double &
+                         &precision '// &
+                         '(its diagonal term '//rtoa(diag(ieq))//' at '//map%describe(ieq)// &
+                         ' exceeds sqrt(huge) = '// &
+                         rtoa(sqrt(huge(1.0_dp)))//'; the factorization reported: '// &
+                         status%message// &
                          '): check the materials'' E and thickness and their units')
       end if
    end subroutine stiffness_range
@@ -132,7 +143,8 @@ contains
          nn = m%nnode_e(ie)
          elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
          imat = m%matno(ie)
-         call element_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, m%mats(imat)%poiss, &
+         call element_stresses(m%ntype, nn, elcod(:, 1:nn), m%mats(imat)%young, &
+                               m%mats(imat)%poiss, &
                                m%ngaus, [(0.0_dp, k=1, 2*nn)], ngp, xyg, sg, sn(:, 1:nn), ierr)
          body%gp_start(ie + 1) = body%gp_start(ie) + ngp
       end do
@@ -167,8 +179,10 @@ contains
    !! apart (a tie of the x dofs carries no y force).
    subroutine number_bodies(m, body, nbody)
       type(model_t), intent(in) :: m
-      integer, allocatable, intent(out) :: body(:, :)   !! (2, npoin) body of every node, x and y balance
-      integer, intent(out) :: nbody                      !! bodies (the larger count of the two directions)
+      integer, allocatable, intent(out) :: body(:, :)   !! (2, npoin) body of every
+                                                        !! node, x and y balance
+      integer, intent(out) :: nbody                      !! bodies (the larger count
+                                                         !! of the two directions)
       integer, allocatable :: mesh_body(:), links(:, :), rigid(:)
       integer :: j, idir, nmesh, nlink, k, nb(2)
       allocate (mesh_body(m%npoin), body(2, m%npoin), rigid(m%npoin))
@@ -210,9 +224,11 @@ contains
    !! In axisymmetry only the axial resultant must vanish: the radial ring forces
    !! of a body in equilibrium do not add up to zero (its hoop stresses carry them).
    pure real(dp) function body_imbalance(body, nbody, f, scale, axisymmetric) result(worst)
-      integer, intent(in) :: body(:, :)      !! (2, npoin) body of every node for the x and y balance
+      integer, intent(in) :: body(:, :)      !! (2, npoin) body of every node
+                                             !! for the x and y balance
       integer, intent(in) :: nbody           !! bodies (at least the largest entry of body)
-      real(dp), intent(in) :: f(:, :)        !! (2, npoin) external + reactions - spring internal forces
+      real(dp), intent(in) :: f(:, :)        !! (2, npoin) external + reactions
+                                             !! - spring internal forces
       real(dp), intent(in) :: scale          !! largest nodal force seen so far
       logical, intent(in) :: axisymmetric    !! check the axial (z) resultant only
       real(dp) :: total(2, max(nbody, 1))
@@ -220,7 +236,9 @@ contains
       total = 0.0_dp
       do ip = 1, size(body, 2)
          do idir = 1, 2
-            if (body(idir, ip) > 0) total(idir, body(idir, ip)) = total(idir, body(idir, ip)) + f(idir, ip)
+            if (body(idir, ip) > 0) then
+               total(idir, body(idir, ip)) = total(idir, body(idir, ip)) + f(idir, ip)
+            end if
          end do
       end do
       if (axisymmetric) then

@@ -12,7 +12,8 @@ module contact_assembly
    use dof_map, only: dof_map_t
    use contact_types, only: contact_def_t, contact_pair_t, MAX_PAIR_NODES
    use contact_element, only: pair_stiffness
-   use contact_algorithm, only: contact_state_t, pair_matrix, pair_force_vector, pair_dofs, start_force_normal
+   use contact_algorithm, only: contact_state_t, pair_matrix, pair_force_vector, pair_dofs, &
+         start_force_normal
    implicit none
    private
    public :: contact_springs_t, pair_links, pair_values, scatter_free, spring_nodal_forces
@@ -22,7 +23,8 @@ module contact_assembly
       integer :: npair = 0
       integer :: nd = 2*MAX_PAIR_NODES               !! dofs of the largest pair
       integer, allocatable :: peq(:, :)              !! (nd, npair) equations of the pairs' dofs
-      real(dp), allocatable :: kstore(:, :, :)       !! (nd, nd, npair) spring matrices of the current modes
+      real(dp), allocatable :: kstore(:, :, :)       !! (nd, nd, npair) spring matrices
+                                                     !! of the current modes
    contains
       procedure :: init => springs_init
       procedure :: set_matrices => springs_set_matrices
@@ -129,13 +131,15 @@ contains
    subroutine springs_predicted_forces(this, pairs, rvec, dv, rpred)
       class(contact_springs_t), intent(in) :: this
       type(contact_pair_t), intent(in) :: pairs(:)
-      real(dp), intent(in) :: rvec(:, :)       !! (nd, npair) spring forces the solution started from
+      real(dp), intent(in) :: rvec(:, :)       !! (nd, npair) spring forces
+                                               !! the solution started from
       real(dp), intent(in) :: dv(:, :)         !! (2, npoin) the solution
       real(dp), intent(inout) :: rpred(:, :)   !! (nd, npair)
       integer :: j, k
       do j = 1, this%npair
          k = 2*pairs(j)%nn
-         rpred(1:k, j) = rvec(1:k, j) + matmul(this%kstore(1:k, 1:k, j), pair_values(dv, pairs(j), k))
+         rpred(1:k, j) = rvec(1:k, j) + matmul(this%kstore(1:k, 1:k, j), pair_values(dv, &
+                                                                                     pairs(j), k))
       end do
    end subroutine springs_predicted_forces
 

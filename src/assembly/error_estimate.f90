@@ -269,7 +269,7 @@ contains
                      other = wcorn(l, k)
                      shared = .false.
                      others: do l = 1, nsel
-                        if (l == k) cycle
+                        if (l == k) cycle others
                         do g0 = 1, wnc(l)
                            if (wcorn(g0, l) == other) then
                               shared = .true.

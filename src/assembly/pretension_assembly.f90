@@ -25,14 +25,16 @@ module pretension_assembly
    use pretension, only: pretension_t
    implicit none
    private
-   public :: pretension_run_t, assemble_pretension, pretension_nodal_forces, section_forces, section_shortening, &
+   public :: pretension_run_t, assemble_pretension, pretension_nodal_forces, section_forces, &
+         section_shortening, &
              PENALTY
 
    real(dp), parameter :: PENALTY = 1.0e3_dp
 
    !> What the analysis keeps of the sections.
    type :: section_springs_t
-      real(dp), allocatable :: kp(:)            !! (nodes) spring stiffness at each node [force/length]
+      real(dp), allocatable :: kp(:)            !! (nodes) spring stiffness
+                                                !! at each node [force/length]
       real(dp), allocatable :: w(:)             !! (nodes) the nodes' shares of the section [area]
    end type section_springs_t
 
@@ -119,7 +121,8 @@ contains
             gn(1:nn) = m%lnods(local(1:nn), ie)
             if (.not. all([(any(p%copies == gn(q)), q=1, nn)])) cycle
             edcod(:, 1:nn) = m%coord(:, gn(1:nn))
-            call edge_load(m%ntype, nn, edcod(:, 1:nn), one(1:nn), zero(1:nn), m%mats(m%matno(ie))%thick, &
+            call edge_load(m%ntype, nn, edcod(:, 1:nn), one(1:nn), zero(1:nn), &
+                           m%mats(m%matno(ie))%thick, &
                            eforce(1:2*nn))
             do q = 1, nn
                do i = 1, size(p%nodes)
@@ -200,9 +203,11 @@ contains
          nn = m%nnode_e(ie)
          imat = m%matno(ie)
          call element_stiffness(m%ntype, nn, m%coord(:, m%lnods(1:nn, ie)), m%mats(imat)%young, &
-                                m%mats(imat)%poiss, m%mats(imat)%thick, m%ngaus, estif(1:2*nn, 1:2*nn), ierr)
+                                m%mats(imat)%poiss, m%mats(imat)%thick, m%ngaus, &
+                                estif(1:2*nn, 1:2*nn), ierr)
          if (ierr /= 0) then
-            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)//': no stiffness for the pretension force')
+            call status%set(STAT_JACOBIAN, 'element '//itoa(ie)// &
+                            ': no stiffness for the pretension force')
             return
          end if
          ue(1:2*nn) = reshape(disp(:, m%lnods(1:nn, ie)), [2*nn])

@@ -22,7 +22,8 @@ module contact_algorithm
    use contact_pair_types, only: pair_state_t, pair_mode_t, contact_state_t, MAX_SWITCH, &
                                  NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    use contact_state, only: contact_init, begin_increment, commit_increment, start_force_normal, &
-                            drop_regularisation, regularise_slip, check_invariants, frozen_pairs, law_drift, &
+                            drop_regularisation, regularise_slip, check_invariants, frozen_pairs, &
+                            law_drift, &
                             tangential_drift
    use contact_rough_pair, only: rough_outcome_t, evaluate_rough_pair, touching_band
    use contact_ideal_pair, only: evaluate_ideal, augment_multipliers
@@ -32,7 +33,8 @@ module contact_algorithm
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
              pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
-             start_force_normal, frozen_pairs, tangential_drift, drop_regularisation, regularise_slip, &
+             start_force_normal, frozen_pairs, tangential_drift, drop_regularisation, &
+             regularise_slip, &
              anchor_regularisation, release_anchors, settle_frozen
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: MAX_SWITCH
@@ -102,13 +104,16 @@ contains
       end do
       do k = 1, size(st%rough)
          j = st%rough(k)
-         r = evaluate_rough_pair(cdef%ifaces(cdef%pairs(j)%iface), cdef%pairs(j), st%kloc(j), cdef%opts, st%s(j), &
+         r = evaluate_rough_pair(cdef%ifaces(cdef%pairs(j)%iface), cdef%pairs(j), st%kloc(j), &
+                                 cdef%opts, st%s(j), &
                                  st%md(j), st%dun(j), st%dut(j), st%fn(j), fpred(j), &
-                                 cdef%opts%p_min_ratio*st%p_start, first, st%regularise, st%regularise_slip)
+                                 cdef%opts%p_min_ratio*st%p_start, first, st%regularise, &
+                                 st%regularise_slip)
          st%md(j) = r%md
          st%fn(j) = r%fn
          st%ft(j) = r%ft
-         if (st%md(j)%anchored) call anchored_forces(cdef%ifaces(cdef%pairs(j)%iface), st%s(j)%un + st%dun(j), &
+         if (st%md(j)%anchored) call anchored_forces(cdef%ifaces(cdef%pairs(j)%iface), &
+                                                     st%s(j)%un + st%dun(j), &
                                                      st%dut(j), st%md(j), st%fn(j), st%ft(j))
          changed(j) = r%changed
          st%chatter = st%chatter .or. r%chatter
@@ -201,8 +206,12 @@ contains
       md%fn_anc = 0.0_dp
       md%ft_anc = 0.0_dp
       if (.not. md%closed) return
-      if (md%touching .and. u - md%uthr > touching_band(ifc, md, .false.)) md%fn_anc = md%kn*(u - md%un_anc)
-      if (md%tstate == TS_SLIP .and. .not. md%tstable .and. md%kt > 0.0_dp) md%ft_anc = md%kt*(dut - md%ut_anc)
+      if (md%touching .and. u - md%uthr > touching_band(ifc, md, .false.)) then
+         md%fn_anc = md%kn*(u - md%un_anc)
+      end if
+      if (md%tstate == TS_SLIP .and. .not. md%tstable .and. md%kt > 0.0_dp) then
+         md%ft_anc = md%kt*(dut - md%ut_anc)
+      end if
       fn = fn + md%fn_anc
       ft = ft + md%ft_anc
    end subroutine anchored_forces

@@ -21,7 +21,8 @@ module contact_definition
    use errors, only: error_list_t
    use strings, only: itoa, rtoa
    use model, only: model_t, NTYPE_AXISYMMETRIC
-   use contact_types, only: contact_pair_t, interface_t, rigid_body_t, LAW_ROUGH, PAIR_NODE, PAIR_RIGID, &
+   use contact_types, only: contact_pair_t, interface_t, rigid_body_t, LAW_ROUGH, PAIR_NODE, &
+         PAIR_RIGID, &
                             MATCH_SEGMENT, RIGID_CIRCLE, UNITS_KGF_UM, UNITS_N_UM, KGF_PER_NMM2
    use contact_spec, only: iface_spec_t
    use contact_laws, only: convert_interface, admissible_reversals
@@ -52,7 +53,8 @@ contains
       file = m%deck_file
       allocate (pairs(0), young(m%npoin), nu(m%npoin))
       call node_modulus(m, young, nu)
-      size_model = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), maxval(m%coord(2, :)) - minval(m%coord(2, :)))
+      size_model = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), &
+                       maxval(m%coord(2, :)) - minval(m%coord(2, :)))
       m%contact%rigids = m%contact_spec%rigids
       m%contact%opts = m%contact_spec%opts
       call check_rigids(m, m%contact%rigids, size_model, file, errors)
@@ -137,7 +139,8 @@ contains
    subroutine check_rigids(m, rigids, size_model, file, errors)
       type(model_t), intent(in) :: m
       type(rigid_body_t), intent(in) :: rigids(:)
-      real(dp), intent(in) :: size_model          !! model size [length]: vertices closer than 1e-12 of it coincide
+      real(dp), intent(in) :: size_model          !! model size [length]: vertices
+                                                  !! closer than 1e-12 of it coincide
       character(len=*), intent(in) :: file
       type(error_list_t), intent(inout) :: errors
       logical :: in_elem(m%npoin)
@@ -148,18 +151,24 @@ contains
       end do
       do r = 1, size(rigids)
          associate (rb => rigids(r))
-            if (in_elem(rb%node)) call errors%add('E-RIGID', 'CONTACT/RIGID: reference node '//itoa(rb%node)// &
-                                                  ' belongs to an element; the reference node of a rigid body '// &
-                                                  'must be a node of no element', file=file, line=rb%line)
+            if (in_elem(rb%node)) call errors%add('E-RIGID', &
+                                                  'CONTACT/RIGID: reference node '// &
+                                                  itoa(rb%node)// &
+                                                  ' belongs to an element; the reference node of a &
+                                                  &rigid body '// &
+                                                  'must be a node of no element', file=file, &
+                                                  line=rb%line)
             if (rb%shape == RIGID_CIRCLE) cycle
             if (size(rb%xy, 2) < 2) then
-               call errors%add('E-RIGID', 'CONTACT/RIGID: a polyline profile needs at least two vertices '// &
+               call errors%add('E-RIGID', &
+                               'CONTACT/RIGID: a polyline profile needs at least two vertices '// &
                                '(X, Y cards after the RIGID card), found '//itoa(size(rb%xy, 2)), &
                                file=file, line=rb%line)
             else
                do v = 1, size(rb%xy, 2) - 1
                   if (norm2(rb%xy(:, v + 1) - rb%xy(:, v)) <= 1.0e-12_dp*size_model) then
-                     call errors%add('E-RIGID', 'CONTACT/RIGID: vertices '//itoa(v)//' and '//itoa(v + 1)// &
+                     call errors%add('E-RIGID', 'CONTACT/RIGID: vertices '//itoa(v)//' and '// &
+                                     itoa(v + 1)// &
                                      ' of the profile coincide', file=file, line=rb%line)
                   end if
                end do
@@ -180,7 +189,8 @@ contains
 
       ok = .false.
       if (s%law%law == LAW_ROUGH .and. .not. s%have_normal) then
-         call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)//' (rough) has no NORMAL card '// &
+         call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)// &
+                         ' (rough) has no NORMAL card '// &
                          '(CN, M, CN2, M2)', file=file, line=s%line)
       end if
       if (.not. s%have_friction) then
@@ -189,33 +199,48 @@ contains
       end if
       both = s%surf(1)%given .and. s%surf(2)%given
       if (s%law%rigid > 0) then
-         if (s%surf(2)%given) call errors%add('E-RIGID', 'CONTACT: interface '//itoa(i)//' has a RIGID body '// &
-                                              'and a SURFACE B: the rigid body is side B, give only SURFACE A '// &
-                                              '(the deformable surface facing it)', file=file, line=s%surf(2)%line)
-         if (size(s%pairs) > 0) call errors%add('E-RIGID', 'CONTACT: interface '//itoa(i)//' has a RIGID body: '// &
-                                                'its pairs are built from SURFACE A, PAIRS cannot be given', &
+         if (s%surf(2)%given) call errors%add('E-RIGID', &
+                                              'CONTACT: interface '//itoa(i)// &
+                                              ' has a RIGID body '// &
+                                              'and a SURFACE B: the rigid body is side B, give &
+                                              &only SURFACE A '// &
+                                              '(the deformable surface facing it)', file=file, &
+                                              line=s%surf(2)%line)
+         if (size(s%pairs) > 0) call errors%add('E-RIGID', &
+                                                'CONTACT: interface '//itoa(i)// &
+                                                ' has a RIGID body: '// &
+                                                'its pairs are built from SURFACE A, PAIRS cannot &
+                                                &be given', &
                                                 file=file, line=s%pairs(1)%line)
-         if (s%have_matching) call errors%add('E-RIGID', 'CONTACT: interface '//itoa(i)//': MATCHING applies '// &
-                                              'to a SURFACE B; the nodes of SURFACE A are always projected on a '// &
+         if (s%have_matching) call errors%add('E-RIGID', &
+                                              'CONTACT: interface '//itoa(i)// &
+                                              ': MATCHING applies '// &
+                                              'to a SURFACE B; the nodes of SURFACE A are always &
+                                              &projected on a '// &
                                               'rigid profile', file=file, line=s%matching_line)
          if (.not. s%surf(1)%given) then
-            call errors%add('E-RIGID', 'CONTACT: interface '//itoa(i)//' has a RIGID body but no SURFACE A '// &
+            call errors%add('E-RIGID', 'CONTACT: interface '//itoa(i)// &
+                            ' has a RIGID body but no SURFACE A '// &
                             '(the deformable surface facing it)', file=file, line=s%line)
             return
          end if
          if (s%surf(2)%given .or. size(s%pairs) > 0 .or. s%have_matching) return
       else if (s%law%matching == MATCH_SEGMENT) then
-         if (size(s%pairs) > 0) call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)//': PAIRS are '// &
-                                                'node-to-node; MATCHING SEGMENT builds its pairs from SURFACE A '// &
+         if (size(s%pairs) > 0) call errors%add('E-CONTACT', &
+                                                'CONTACT: interface '//itoa(i)//': PAIRS are '// &
+                                                'node-to-node; MATCHING SEGMENT builds its pairs &
+                                                &from SURFACE A '// &
                                                 'and SURFACE B', file=file, line=s%pairs(1)%line)
          if (.not. both) then
-            call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)//' (MATCHING SEGMENT) needs SURFACE A '// &
+            call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)// &
+                            ' (MATCHING SEGMENT) needs SURFACE A '// &
                             'and SURFACE B cards', file=file, line=s%line)
             return
          end if
          if (size(s%pairs) > 0) return
       else if (size(s%pairs) == 0 .and. .not. both) then
-         call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)//' needs SURFACE A and SURFACE B cards, '// &
+         call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(i)// &
+                         ' needs SURFACE A and SURFACE B cards, '// &
                          'PAIRS, or SURFACE A and a RIGID body', file=file, line=s%line)
          return
       end if
@@ -231,7 +256,8 @@ contains
    subroutine define_law(young, nu, pairs, law, line, file, errors)
       real(dp), intent(in) :: young(:), nu(:)        !! (npoin) E [stress] and nu [-] at every node
       type(contact_pair_t), intent(inout) :: pairs(:)   !! the interface's pairs: estar [stress] set
-      type(interface_t), intent(inout) :: law        !! as given; converted to model units, r_t per pair
+      type(interface_t), intent(inout) :: law        !! as given; converted to
+                                                     !! model units, r_t per pair
       integer, intent(in) :: line                    !! deck line of the interface
       character(len=*), intent(in) :: file           !! the deck
       type(error_list_t), intent(inout) :: errors    !! constants out of range (law_constants_fit)
@@ -318,8 +344,10 @@ contains
          if (.not. fit) return
          if (lx > log(tiny(1.0_dp)) + 1.0_dp .and. lx < log(huge(1.0_dp)) - 1.0_dp) return
          call errors%add('E-CONTACT', 'CONTACT/'//card//': '//name//' would be e^'//rtoa(lx)// &
-                         ', beyond the range of the arithmetic: the constant or its exponent is out of range '// &
-                         '(the unit conversion raises the pressure factor to the exponent)', file=file, line=line)
+                         ', beyond the range of the arithmetic: the constant or its exponent is &
+                         &out of range '// &
+                         '(the unit conversion raises the pressure factor to the exponent)', &
+                         file=file, line=line)
          fit = .false.
       end subroutine check
    end function law_constants_fit
@@ -331,7 +359,8 @@ contains
    subroutine check_pairs(m, pairs, size_model, file, errors, warnings)
       type(model_t), intent(in) :: m
       type(contact_pair_t), intent(in) :: pairs(:)
-      real(dp), intent(in) :: size_model      !! model size [length]: penetration below 1e-9 of it is none
+      real(dp), intent(in) :: size_model      !! model size [length]: penetration
+                                              !! below 1e-9 of it is none
       character(len=*), intent(in) :: file
       type(error_list_t), intent(inout) :: errors
       type(error_list_t), intent(inout) :: warnings
@@ -347,20 +376,25 @@ contains
          associate (p => pairs(k))
             if (p%kind /= PAIR_RIGID) then
                if (body(p%node_a) == body(p%nodes(2))) then
-                  call errors%add('E-CONTACT', 'CONTACT: pair '//itoa(p%node_a)//'-'//itoa(p%node_b)// &
-                                  ': both nodes belong to the same body (a contact spring joins two bodies)', &
+                  call errors%add('E-CONTACT', 'CONTACT: pair '//itoa(p%node_a)//'-'// &
+                                  itoa(p%node_b)// &
+                                  ': both nodes belong to the same body (a contact spring joins &
+                                  &two bodies)', &
                                   file=file, line=p%line)
                end if
                master(p%nodes(2:p%nn)) = .true.
             end if
             if (p%node_a == p%node_b) then
-               call errors%add('E-CONTACT', 'CONTACT: pair '//itoa(p%node_a)//'-'//itoa(p%node_b)// &
+               call errors%add('E-CONTACT', 'CONTACT: pair '//itoa(p%node_a)//'-'// &
+                               itoa(p%node_b)// &
                                ' joins a node to itself', file=file, line=p%line)
             end if
             if (p%kind == PAIR_NODE) then
                if (used_b(p%node_b)) then
-                  call errors%add('E-CONTACT', 'CONTACT: node '//itoa(p%node_b)//' of surface B is the partner of '// &
-                                  'two nodes of surface A (overlapping surfaces or a too large tolerance)', &
+                  call errors%add('E-CONTACT', 'CONTACT: node '//itoa(p%node_b)// &
+                                  ' of surface B is the partner of '// &
+                                  'two nodes of surface A (overlapping surfaces or a too large &
+                                  &tolerance)', &
                                   file=file, line=p%line)
                end if
                used_b(p%node_b) = .true.
@@ -369,19 +403,24 @@ contains
             if (p%kind /= PAIR_NODE) q = p%node_a
             if (p%area <= 0.0_dp .and. .not. (m%ntype == NTYPE_AXISYMMETRIC .and. &
                                               m%coord(1, q) <= 1.0e-12_dp*size_model)) then
-               call errors%add('E-CONTACT', 'CONTACT: pair '//itoa(p%node_a)//'-'//itoa(p%node_b)// &
-                               ' has no contact area (its node is on no edge of the paired zone of surface '// &
+               call errors%add('E-CONTACT', 'CONTACT: pair '//itoa(p%node_a)//'-'// &
+                               itoa(p%node_b)// &
+                               ' has no contact area (its node is on no edge of the paired zone of &
+                               &surface '// &
                                merge('B', 'A', p%kind == PAIR_NODE)//')', file=file, line=p%line)
             end if
             if (p%g0 < -1.0e-9_dp*size_model) then
-               call warnings%add('W-PENETRATION', 'CONTACT: pair '//itoa(p%node_a)//'-'//itoa(p%node_b)// &
-                                 ' starts with a negative gap (penetration) '//rtoa(p%g0), file=file, line=p%line)
+               call warnings%add('W-PENETRATION', 'CONTACT: pair '//itoa(p%node_a)//'-'// &
+                                 itoa(p%node_b)// &
+                                 ' starts with a negative gap (penetration) '//rtoa(p%g0), &
+                                 file=file, line=p%line)
             end if
          end associate
       end do
       do k = 1, size(pairs)
          if (.not. master(pairs(k)%node_a)) cycle
-         call errors%add('E-CONTACT', 'CONTACT: node '//itoa(pairs(k)%node_a)//' is on surface A and on '// &
+         call errors%add('E-CONTACT', 'CONTACT: node '//itoa(pairs(k)%node_a)// &
+                         ' is on surface A and on '// &
                          'surface B (overlapping surfaces)', file=file, line=pairs(k)%line)
       end do
    end subroutine check_pairs

@@ -43,7 +43,8 @@ module contact_energy
    implicit none
    private
    public :: energy_t, energy_init, energy_begin, energy_commit, energy_fields, energy_cycles
-   public :: slider_dissipation, virgin_work, branch_work, normal_work, normal_recoverable, find_cycles
+   public :: slider_dissipation, virgin_work, branch_work, normal_work, normal_recoverable, &
+         find_cycles
 
    !> What the run keeps for the energy bookkeeping.
    type :: energy_t
@@ -56,7 +57,8 @@ module contact_energy
       integer :: npoint = 0
       integer, allocatable :: step(:)               !! (0:) step number of each point
       real(dp), allocatable :: lambda(:, :)         !! (ncase, 0:) load factors
-      real(dp), allocatable :: hist(:, :, :)        !! (3, niface, 0:) cumulative dissipation, sum F_T, mean u_T
+      real(dp), allocatable :: hist(:, :, :)        !! (3, niface, 0:) cumulative dissipation,
+                                                    !! sum F_T, mean u_T
    end type energy_t
 
 contains
@@ -121,7 +123,8 @@ contains
             else if (md%kte > 0.0_dp) then
                f0 = merge(0.0_dp, s0%ft, md%newly_closed .or. .not. s0%closed)
                x0 = merge(0.0_dp, s0%xb, md%newly_closed .or. .not. s0%closed)
-               dt = slider_dissipation(f0, st%dut(j), md%kte, ifc%kappa, md%mu*max(s1%fn, 0.0_dp), x0, ifc%hardening)
+               dt = slider_dissipation(f0, st%dut(j), md%kte, ifc%kappa, &
+                                       md%mu*max(s1%fn, 0.0_dp), x0, ifc%hardening)
             end if
             en%diss_t(j) = en%diss_t(j) + dt
          end associate
@@ -169,8 +172,10 @@ contains
       ni = size(en%diss_step)
       tab%ncycle = size(c0)
       allocate (tab%first(tab%ncycle), tab%last(tab%ncycle))
-      allocate (tab%energy(ni, tab%ncycle), tab%force_amplitude(ni, tab%ncycle), tab%slip_amplitude(ni, tab%ncycle), &
-                tab%secant_stiffness(ni, tab%ncycle), tab%loss_factor(ni, tab%ncycle), tab%damping_ratio(ni, tab%ncycle))
+      allocate (tab%energy(ni, tab%ncycle), tab%force_amplitude(ni, tab%ncycle), &
+                tab%slip_amplitude(ni, tab%ncycle), &
+                tab%secant_stiffness(ni, tab%ncycle), tab%loss_factor(ni, tab%ncycle), &
+                tab%damping_ratio(ni, tab%ncycle))
       do ic = 1, tab%ncycle
          ! c0, c1 are 1-based indices into points 0..npoint
          associate (h => en%hist(:, :, c0(ic) - 1:c1(ic) - 1))
@@ -333,7 +338,8 @@ contains
       p1 = pressure(s1, area)
       c0 = unloading_constant(s0%ua, s0%pa, ifc%cn2, ifc%m2)
       c1 = unloading_constant(s1%ua, s1%pa, ifc%cn2, ifc%m2)
-      if (s0%on_unloading .and. s1%on_unloading .and. abs(s0%ua - s1%ua) <= epsilon(1.0_dp)*abs(s1%ua) .and. &
+      if (s0%on_unloading .and. s1%on_unloading .and. abs(s0%ua - s1%ua) <= &
+            epsilon(1.0_dp)*abs(s1%ua) .and. &
           abs(s0%pa - s1%pa) <= epsilon(1.0_dp)*abs(s1%pa)) then
          w = area*(branch_work(p1, c1, ifc%m2) - branch_work(p0, c0, ifc%m2))
          return
@@ -391,7 +397,8 @@ contains
       end do
    end function interface_sum
 
-   !> Per interface the sum of F_T and the area-weighted mean u_T of the closed pairs (0: none closed).
+   !> Per interface the sum of F_T and the area-weighted mean u_T of the closed pairs (0: none
+   !> closed).
    pure subroutine interface_motion(cdef, st, ni, ftot, smean)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(in) :: st

@@ -70,9 +70,12 @@ contains
          if (size(cf%pressure) == np) return
          cf = contact_fields_t()
       end if
-      allocate (cf%pressure(np), cf%shear(np), cf%force_normal(np), cf%force_tangential(np), cf%closure(np), &
-                cf%slip(np), cf%slip_irreversible(np), cf%slip_gross(np), cf%effective_slip(np), cf%friction(np), &
-                cf%normal_state(np), cf%tangential_state(np), cf%stiffness_normal(np), cf%stiffness_tangential(np), &
+      allocate (cf%pressure(np), cf%shear(np), cf%force_normal(np), cf%force_tangential(np), &
+                cf%closure(np), &
+                cf%slip(np), cf%slip_irreversible(np), cf%slip_gross(np), cf%effective_slip(np), &
+                cf%friction(np), &
+                cf%normal_state(np), cf%tangential_state(np), cf%stiffness_normal(np), &
+                cf%stiffness_tangential(np), &
                 cf%switches(np))
    end subroutine allocate_fields
 

@@ -159,7 +159,8 @@ contains
                   ! (a multiplier outside the cone, |lam_T| > lim, gives no positive secant)
                   ksec = KT_SLIP_REG*st%eps_t(jp)
                   if (abs(trial_t - st%lam_t(jp)) > 0.0_dp) ksec = st%eps_t(jp)* &
-                     min(max((st%ft(jp) - st%lam_t(jp))/(trial_t - st%lam_t(jp)), KT_SLIP_REG), 1.0_dp)
+                     min(max((st%ft(jp) - st%lam_t(jp))/(trial_t - st%lam_t(jp)), KT_SLIP_REG), &
+                         1.0_dp)
                end if
                ! a new factorization when the secant moved by more than 10 %
                if (abs(ksec - md%ksec) > 0.1_dp*md%ksec) then
@@ -284,7 +285,8 @@ contains
          end associate
       end do
       st%violation = viol
-      done = viol <= st%tol_pen .and. coulomb <= fround .and. tension <= fround .and. outside <= fround
+      done = viol <= st%tol_pen .and. coulomb <= fround .and. tension <= fround .and. outside <= &
+            fround
       if (done) return
       ! within tolerance but slipping pairs off mu F_n: Coulomb's bound from now on
       if (viol <= st%tol_pen .and. coulomb > fround) st%coulomb = .true.

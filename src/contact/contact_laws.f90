@@ -204,7 +204,8 @@ contains
       logical, intent(in) :: on_unloading
       real(dp), intent(in) :: ua, pa
       if (on_unloading .and. u < ua) then
-         k = unloading_tangent(unloading_pressure(u, ua, pa, cn2, m2), unloading_constant(ua, pa, cn2, m2), m2)
+         k = unloading_tangent(unloading_pressure(u, ua, pa, cn2, m2), &
+                               unloading_constant(ua, pa, cn2, m2), m2)
       else
          k = virgin_tangent(virgin_pressure(u, cn, m), cn, m)
       end if

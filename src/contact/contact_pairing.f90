@@ -46,9 +46,11 @@ module contact_pairing
    use strings, only: itoa, rtoa
    use sorting, only: insertion_sort
    use model, only: model_t, NTYPE_AXISYMMETRIC
-   use contact_types, only: contact_pair_t, rigid_body_t, PAIR_SEGMENT, PAIR_RIGID, RIGID_CIRCLE, MAX_PAIR_NODES
+   use contact_types, only: contact_pair_t, rigid_body_t, PAIR_SEGMENT, PAIR_RIGID, RIGID_CIRCLE, &
+         MAX_PAIR_NODES
    use contact_spec, only: iface_spec_t
-   use contact_surfaces, only: edge_nodes, surface_edges, check_listed, surface_nodes, surface_normals, &
+   use contact_surfaces, only: edge_nodes, surface_edges, check_listed, surface_nodes, &
+         surface_normals, &
                                lumped_areas, edge_scales
    use shape_2d, only: edge_shape
    use quadrature, only: gauss_legendre
@@ -84,9 +86,12 @@ contains
       real(dp), intent(in) :: coord(:, :)      !! (2, npoin) node coordinates [length]
       integer, intent(in) :: nodes_a(:)        !! nodes of surface A
       integer, intent(in) :: nodes_b(:)        !! nodes of surface B
-      real(dp), intent(in) :: normal(:, :)     !! (2, npoin) unit outward normals of surface B at its nodes
-      real(dp), intent(in) :: tol              !! accepted tangential offset and initial penetration [length]
-      integer, intent(out) :: pair_b(:)        !! (size(nodes_a)) partner in B of each node of A, 0 if none
+      real(dp), intent(in) :: normal(:, :)     !! (2, npoin) unit outward normals
+                                               !! of surface B at its nodes
+      real(dp), intent(in) :: tol              !! accepted tangential offset and
+                                               !! initial penetration [length]
+      integer, intent(out) :: pair_b(:)        !! (size(nodes_a)) partner in B
+                                               !! of each node of A, 0 if none
       real(dp) :: d(2), t(2), off, best
       integer :: i, j, a, b
       pair_b = 0
@@ -115,13 +120,16 @@ contains
    !! method on (x(xi) - p).x'(xi) = 0, started from the chord.
    pure subroutine project_on_edge(nn, xy, p, xi, xb, normal, offset)
       integer, intent(in) :: nn                 !! nodes on the edge: 2 (linear) or 3 (quadratic)
-      real(dp), intent(in) :: xy(:, :)          !! (2, nn) node coordinates [length], (start, end, mid)
+      real(dp), intent(in) :: xy(:, :)          !! (2, nn) node coordinates
+                                                !! [length], (start, end, mid)
       real(dp), intent(in) :: p(2)              !! the point [length]
       real(dp), intent(out) :: xi               !! edge coordinate of the foot, clamped to [-1, 1]
       real(dp), intent(out) :: xb(2)            !! the edge's point at xi [length]
       real(dp), intent(out) :: normal(2)        !! unit outward normal of the edge at xi
-      real(dp), intent(out) :: offset           !! how far p lies beyond the end of the edge along its
-                                                !! tangent [length]; 0 when the foot falls on the edge
+      real(dp), intent(out) :: offset           !! how far p lies beyond the
+                                                !! end of the edge along its
+                                                !! tangent [length]; 0 when the foot falls on the
+                                                !! edge
       real(dp) :: shape(3), deriv(3), d(2), x1(2), f, fp, dxi, l2, tng(2), x2(2)
       integer :: it
       d = xy(:, 2) - xy(:, 1)
@@ -161,12 +169,14 @@ contains
    !! if none is within tol, the one of smallest offset.  A circle's outward
    !! normal is radial.
    pure subroutine project_on_rigid(rb, p, tol, xb, normal, offset, ok)
-      type(rigid_body_t), intent(in) :: rb      !! the profile (polyline vertices or circle) [length]
+      type(rigid_body_t), intent(in) :: rb      !! the profile (polyline vertices
+                                                !! or circle) [length]
       real(dp), intent(in) :: p(2)              !! the point [length]
       real(dp), intent(in) :: tol               !! accepted offset beyond a segment's end [length]
       real(dp), intent(out) :: xb(2)            !! nearest point of the profile [length]
       real(dp), intent(out) :: normal(2)        !! unit outward normal of the profile at xb
-      real(dp), intent(out) :: offset           !! distance beyond the profile's ends along its tangent
+      real(dp), intent(out) :: offset           !! distance beyond the profile's
+                                                !! ends along its tangent
                                                 !! [length]; 0 on the profile (always 0 on a circle)
       logical, intent(out) :: ok                !! false if p is the centre of a circle (no normal)
       real(dp) :: d(2), r, best, xi, yb(2), nb(2), off, dist
@@ -190,7 +200,8 @@ contains
          call project_on_edge(2, rb%xy(:, k:k + 1), p, xi, yb, nb, off)
          dist = norm2(p - yb)
          if (off > tol .and. offset <= tol) cycle
-         if ((off <= tol .and. offset > tol) .or. dist < best .or. (offset > tol .and. off < offset)) then
+         if ((off <= tol .and. offset > tol) .or. dist < best .or. &
+               (offset > tol .and. off < offset)) then
             best = dist
             offset = off
             xb = yb
@@ -207,8 +218,10 @@ contains
       integer, intent(in) :: ielem(:), iedge(:)     !! the edges (surface_edges)
       real(dp), intent(in) :: p(2)                  !! the point [length]
       real(dp), intent(in) :: tol                   !! accepted offset beyond an edge's end [length]
-      integer, intent(out) :: k                     !! index of the nearest edge in ielem/iedge, 0 if none
-      real(dp), intent(out) :: xi                   !! edge coordinate of the foot on edge k, in [-1, 1]
+      integer, intent(out) :: k                     !! index of the nearest edge
+                                                    !! in ielem/iedge, 0 if none
+      real(dp), intent(out) :: xi                   !! edge coordinate of the foot
+                                                    !! on edge k, in [-1, 1]
       real(dp), intent(out) :: xb(2)                !! the foot [length]
       real(dp), intent(out) :: normal(2)            !! unit outward normal of edge k at the foot
       real(dp) :: xy(2, 3), xi_k, xb_k(2), n_k(2), off, dist, best
@@ -242,7 +255,8 @@ contains
    !! piece integrated with 5 Gauss points (exact on straight edges).  Where
    !! a's shape function integrates to nothing (the end node on the axis of a
    !! quadratic axisymmetric edge) its hat function is used instead.
-   pure subroutine tributary_weights(m, ie_a, ik_a, ie_b, ik_b, area_a, a, nrm, tol, size_model, nm, mnodes, mw, &
+   pure subroutine tributary_weights(m, ie_a, ik_a, ie_b, ik_b, area_a, a, nrm, tol, size_model, &
+                                     nm, mnodes, mw, &
                                      gavg, status)
       type(model_t), intent(in) :: m                !! coord [length], ntype, thicknesses
       integer, intent(in) :: ie_a(:), ik_a(:)       !! edges of surface A
@@ -250,7 +264,8 @@ contains
       real(dp), intent(in) :: area_a(:)             !! (npoin) lumped areas of surface A [length^2]
                                                     !! (lumped_areas; 0 marks the axis node)
       integer, intent(in) :: a                      !! the slave node (a node of surface A)
-      real(dp), intent(in) :: nrm(2)                !! unit normal of the pair, along which the gap is taken
+      real(dp), intent(in) :: nrm(2)                !! unit normal of the pair, along
+                                                    !! which the gap is taken
       real(dp), intent(in) :: tol                   !! accepted offset beyond an edge of B [length]
       real(dp), intent(in) :: size_model            !! model size [length]: a zone of area below
                                                     !! 1e-12 size_model^2 counts as empty
@@ -260,7 +275,8 @@ contains
       real(dp), intent(out) :: gavg                 !! averaged initial gap [length]
       integer, intent(out) :: status                !! TRIB_OK, TRIB_NONE or TRIB_FULL
       integer, parameter :: ng = 5
-      real(dp) :: posgp(ng), weigp(ng), sh(3), dv(3), xy(2, 3), xg(2), dw, hat, xi, xb(2), nb(2), total, sg
+      real(dp) :: posgp(ng), weigp(ng), sh(3), dv(3), xy(2, 3), xg(2), dw, hat, xi, xb(2), nb(2), &
+            total, sg
       real(dp), allocatable :: brk(:)
       integer :: ke, nd(3), nn, ja, ig, kb, bnd(3), bnn, r, q, ib, pass
       logical :: full, use_hat
@@ -285,7 +301,8 @@ contains
                   sg = 0.5_dp*(brk(ib) + brk(ib + 1)) + 0.5_dp*(brk(ib + 1) - brk(ib))*posgp(ig)
                   call edge_shape(nn, sg, sh(1:nn), dv(1:nn))
                   xg = matmul(xy(:, 1:nn), sh(1:nn))
-                  dw = hypot(dot_product(dv(1:nn), xy(1, 1:nn)), dot_product(dv(1:nn), xy(2, 1:nn)))*weigp(ig)* &
+                  dw = hypot(dot_product(dv(1:nn), xy(1, 1:nn)), &
+                             dot_product(dv(1:nn), xy(2, 1:nn)))*weigp(ig)* &
                        0.5_dp*(brk(ib + 1) - brk(ib))
                   if (m%ntype == NTYPE_AXISYMMETRIC) then
                      dw = dw*two_pi*xg(1)
@@ -334,7 +351,8 @@ contains
    !! integrand of the tributary weights is smooth between them.
    pure function break_points(m, ielem, iedge, nn, xy) result(brk)
       type(model_t), intent(in) :: m
-      integer, intent(in) :: ielem(:), iedge(:)     !! the edges whose nodes are projected (surface B)
+      integer, intent(in) :: ielem(:), iedge(:)     !! the edges whose nodes are
+                                                    !! projected (surface B)
       integer, intent(in) :: nn                     !! nodes of the edge cut: 2 or 3
       real(dp), intent(in) :: xy(:, :)              !! (2, nn) its coordinates [length]
       real(dp), allocatable :: brk(:)
@@ -362,7 +380,8 @@ contains
    !! without this its share of the transfer to B would be lost (the patch
    !! test fails near the axis).
    pure real(dp) function slave_weight(ja, sg, sh, area_end, use_hat) result(hat)
-      integer, intent(in) :: ja                 !! position of the slave node on the edge (start, end, mid)
+      integer, intent(in) :: ja                 !! position of the slave node
+                                                !! on the edge (start, end, mid)
       real(dp), intent(in) :: sg                !! edge coordinate
       real(dp), intent(in) :: sh(:)             !! shape functions of the edge at sg
       real(dp), intent(in) :: area_end(2)       !! lumped areas of the edge's end nodes [length^2]
@@ -385,7 +404,8 @@ contains
       end if
    end function slave_weight
 
-   ! ------------------------------------------------------------------ node-to-node pairs of an interface
+   ! ------------------------------------------------------------------ node-to-node pairs of an
+   ! interface
 
    !> Node-to-node pairs of interface iface (the paper): its explicit PAIRS,
    !! then every node of SURFACE A matched with a node of SURFACE B; lumped
@@ -394,7 +414,8 @@ contains
    !! (its errors reported).
    subroutine node_pairs(m, s, iface, tol, file, pairs, errors, ok)
       type(model_t), intent(in) :: m
-      type(iface_spec_t), intent(in) :: s                          !! the interface as the deck gives it
+      type(iface_spec_t), intent(in) :: s                          !! the interface as
+                                                                   !! the deck gives it
       integer, intent(in) :: iface                                 !! its number
       real(dp), intent(in) :: tol                                  !! pairing tolerance [length]
       character(len=*), intent(in) :: file                         !! deck file, for messages
@@ -472,7 +493,8 @@ contains
             p%n = normal(:, p%node_b)
             p%t = [p%n(2), -p%n(1)]
          else if (have_b) then
-            call errors%add('E-CONTACT', 'CONTACT/PAIRS: node '//itoa(p%node_b)//' is not on surface B; '// &
+            call errors%add('E-CONTACT', 'CONTACT/PAIRS: node '//itoa(p%node_b)// &
+                            ' is not on surface B; '// &
                             'give ALPHA', file=file, line=s%pairs(k)%line)
          end if
          if (s%pairs(k)%has_g0) then
@@ -533,8 +555,10 @@ contains
          end do
          if (nbad > 20) list = list//' ...'
          call errors%add('E-UNMATCHED', 'CONTACT: interface '//itoa(iface)//': '//itoa(nbad)// &
-                         ' node(s) of surface A have no partner on surface B within the tolerance '// &
-                         rtoa(tol)//' (tangential offset):'//list//'; for meshes that do not match '// &
+                         ' node(s) of surface A have no partner on surface B within the &
+                         &tolerance '// &
+                         rtoa(tol)//' (tangential offset):'//list// &
+                         '; for meshes that do not match '// &
                          'node for node use MATCHING SEGMENT', file=file, line=s%surf(1)%line)
          return
       end if
@@ -592,7 +616,8 @@ contains
             j = j + 1
             if (s%pairs(j)%has_area) pairs(k)%area = s%pairs(j)%area
             if (.not. s%pairs(j)%has_area .and. .not. have_b) call errors%add('E-CONTACT', &
-                'CONTACT/PAIRS: pair '//itoa(pairs(k)%node_a)//'-'//itoa(pairs(k)%node_b)//' needs an AREA '// &
+                'CONTACT/PAIRS: pair '//itoa(pairs(k)%node_a)//'-'//itoa(pairs(k)%node_b)// &
+                ' needs an AREA '// &
                 '(or a SURFACE B to compute it from)', file=file, line=s%pairs(j)%line)
          end if
          if (pairs(k)%share <= 0.0_dp) pairs(k)%share = pairs(k)%area
@@ -609,7 +634,8 @@ contains
       end do
    end subroutine node_pair_areas
 
-   ! ------------------------------------------------------------------ projected pairs of an interface
+   ! ------------------------------------------------------------------ projected pairs of an
+   ! interface
 
    !> Pairs of interface iface whose side B is a rigid profile or the edges
    !! of surface B (MATCHING SEGMENT): every node of surface A is projected;
@@ -617,8 +643,10 @@ contains
    !! `pairs`; ok is false where the interface cannot be built (its errors
    !! reported).
    subroutine projected_pairs(m, s, iface, tol, size_model, file, pairs, errors, ok)
-      type(model_t), intent(in) :: m                               !! mesh; contact%rigids for a rigid side B
-      type(iface_spec_t), intent(in) :: s                          !! the interface as the deck gives it
+      type(model_t), intent(in) :: m                               !! mesh; contact%rigids
+                                                                   !! for a rigid side B
+      type(iface_spec_t), intent(in) :: s                          !! the interface as
+                                                                   !! the deck gives it
       integer, intent(in) :: iface                                 !! its number
       real(dp), intent(in) :: tol                                  !! pairing tolerance [length]
       real(dp), intent(in) :: size_model                           !! model size [length]
@@ -669,7 +697,8 @@ contains
          if (s%law%rigid > 0) then
             call rigid_pair(m%coord, m%contact%rigids(s%law%rigid), tol, p, outcome)
          else
-            call segment_pair(m, ie_a, ik_a, ie_b, ik_b, area, tol, size_model, file, p, errors, outcome)
+            call segment_pair(m, ie_a, ik_a, ie_b, ik_b, area, tol, size_model, file, p, errors, &
+                              outcome)
          end if
          if (outcome == NODE_PAIRED) then
             nnew = nnew + 1
@@ -684,7 +713,8 @@ contains
          call errors%add('E-UNMATCHED', 'CONTACT: interface '//itoa(iface)//': '//itoa(nbad)// &
                          ' node(s) of surface A do not face '// &
                          trim(merge('the rigid profile', 'surface B        ', s%law%rigid > 0))// &
-                         ' (their projection falls beyond its ends by more than '//rtoa(tol)//'):'//list, &
+                         ' (their projection falls beyond its ends by more than '//rtoa(tol)// &
+                         '):'//list, &
                          file=file, line=s%surf(1)%line)
          return
       end if
@@ -705,7 +735,8 @@ contains
       real(dp), intent(in) :: coord(:, :)            !! (2, npoin) [length]
       type(rigid_body_t), intent(in) :: rb           !! the profile (side B)
       real(dp), intent(in) :: tol                    !! pairing tolerance [length]
-      type(contact_pair_t), intent(inout) :: p       !! node_a set; kind, nodes, axes, g0, position set here
+      type(contact_pair_t), intent(inout) :: p       !! node_a set; kind, nodes,
+                                                     !! axes, g0, position set here
       integer, intent(out) :: outcome                !! NODE_PAIRED or NODE_UNMATCHED
       real(dp) :: xb(2), nrm(2), off
       logical :: okp
@@ -731,7 +762,8 @@ contains
    !! weights and gap averaged over a's tributary zone.  NODE_UNMATCHED when
    !! a faces no edge of B, NODE_REJECTED (an error reported) when its zone
    !! covers more nodes of B than a pair can hold.
-   subroutine segment_pair(m, ie_a, ik_a, ie_b, ik_b, area_a, tol, size_model, file, p, errors, outcome)
+   subroutine segment_pair(m, ie_a, ik_a, ie_b, ik_b, area_a, tol, size_model, file, p, errors, &
+                           outcome)
       type(model_t), intent(in) :: m
       integer, intent(in) :: ie_a(:), ik_a(:)        !! edges of surface A
       integer, intent(in) :: ie_b(:), ik_b(:)        !! edges of surface B
@@ -750,12 +782,16 @@ contains
       p%kind = PAIR_SEGMENT
       p%nodes(1) = p%node_a
       p%w(1) = 1.0_dp
-      call tributary_weights(m, ie_a, ik_a, ie_b, ik_b, area_a, p%node_a, nrm, tol, size_model, nm, mnodes, mw, &
+      call tributary_weights(m, ie_a, ik_a, ie_b, ik_b, area_a, p%node_a, nrm, tol, size_model, &
+                             nm, mnodes, mw, &
                              gavg, status)
       if (status == TRIB_FULL) then
-         call errors%add(E_COARSE_SIDE, 'CONTACT: interface '//itoa(p%iface)//': node '//itoa(p%node_a)// &
-                         ' of surface A faces more than '//itoa(MAX_PAIR_NODES - 1)//' nodes of surface B; with '// &
-                         'MATCHING SEGMENT surface A should be the finer of the two', file=file, line=p%line)
+         call errors%add(E_COARSE_SIDE, 'CONTACT: interface '//itoa(p%iface)//': node '// &
+                         itoa(p%node_a)// &
+                         ' of surface A faces more than '//itoa(MAX_PAIR_NODES - 1)// &
+                         ' nodes of surface B; with '// &
+                         'MATCHING SEGMENT surface A should be the finer of the two', file=file, &
+                         line=p%line)
          outcome = NODE_REJECTED
          return
       end if
@@ -799,14 +835,21 @@ contains
       if (facing) return
       if (nbad > 20) list = list//' ...'
       if (s%law%rigid > 0) then
-         call errors%add('E-RIGID', 'CONTACT: interface '//itoa(iface)//': '//itoa(nbad)//' node(s) of '// &
-                         'surface A lie where the rigid profile faces away from them (its outward normal '// &
-                         'points the way of surface A''s own):'//list//'; list the vertices with the rigid '// &
-                         'body on their left (anticlockwise around the body)', file=file, line=s%surf(1)%line)
+         call errors%add('E-RIGID', 'CONTACT: interface '//itoa(iface)//': '//itoa(nbad)// &
+                         ' node(s) of '// &
+                         'surface A lie where the rigid profile faces away from them (its outward &
+                         &normal '// &
+                         'points the way of surface A''s own):'//list// &
+                         '; list the vertices with the rigid '// &
+                         'body on their left (anticlockwise around the body)', file=file, &
+                         line=s%surf(1)%line)
       else
-         call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(iface)//': '//itoa(nbad)//' node(s) of '// &
-                         'surface A face the back of surface B (both outward normals point the same way):'// &
-                         list//'; a SURFACE is on the wrong face of its body: A and B must be the faces of the '// &
+         call errors%add('E-CONTACT', 'CONTACT: interface '//itoa(iface)//': '//itoa(nbad)// &
+                         ' node(s) of '// &
+                         'surface A face the back of surface B (both outward normals point the &
+                         &same way):'// &
+                         list//'; a SURFACE is on the wrong face of its body: A and B must be the &
+                         &faces of the '// &
                          'two bodies that look at each other', file=file, line=s%surf(1)%line)
       end if
    end function facing

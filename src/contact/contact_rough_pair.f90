@@ -27,12 +27,16 @@
 !! i-1 (explicit, SPEC §2.3).
 module contact_rough_pair
    use kinds, only: dp
-   use contact_types, only: interface_t, contact_pair_t, contact_options_t, LAW_ROUGH, FRICTION_NONE, &
+   use contact_types, only: interface_t, contact_pair_t, contact_options_t, LAW_ROUGH, &
+         FRICTION_NONE, &
                             UPDATE_RETURN, SLIP_GROSS, NEWCLOSED_TANGENT
-   use contact_laws, only: virgin_pressure, virgin_closure, virgin_tangent, unloading_tangent, residual_closure, &
-                           normal_pressure, normal_tangent, tangential_stiffness, friction_coefficient, &
+   use contact_laws, only: virgin_pressure, virgin_closure, virgin_tangent, unloading_tangent, &
+         residual_closure, &
+                           normal_pressure, normal_tangent, tangential_stiffness, &
+                           friction_coefficient, &
                            bilinear_return, unloading_constant
-   use contact_pair_types, only: pair_state_t, pair_mode_t, MAX_SWITCH, TS_STICK, TS_PLASTIC, TS_SLIP
+   use contact_pair_types, only: pair_state_t, pair_mode_t, MAX_SWITCH, TS_STICK, TS_PLASTIC, &
+         TS_SLIP
    implicit none
    private
 
@@ -72,7 +76,8 @@ contains
       logical, intent(in) :: first, returning
       real(dp), intent(in) :: p_start          !! p_m of eq. (4.1)
       real(dp), intent(in) :: pfloor           !! floor pressure p_min_ratio p_m
-      real(dp), intent(in) :: p_incr           !! RETURN: pressure the increment is expected to bring
+      real(dp), intent(in) :: p_incr           !! RETURN: pressure the increment
+                                               !! is expected to bring
       real(dp) :: p
          md%closed = s%closed
          md%on_unloading = s%on_unloading
@@ -111,7 +116,9 @@ contains
          else
             p = max(s%fn/pr%area, pfloor)
             if (s%on_unloading) then
-               md%kn = pr%area*unloading_tangent(p, unloading_constant(s%ua, s%pa, ifc%cn2, ifc%m2), ifc%m2)
+               md%kn = pr%area*unloading_tangent(p, &
+                                                 unloading_constant(s%ua, s%pa, ifc%cn2, ifc%m2), &
+                                                 ifc%m2)
             else
                md%kn = pr%area*virgin_tangent(p, ifc%cn, ifc%m)
             end if
@@ -232,7 +239,8 @@ contains
    !! mode checks of SPEC §4.3: the pair's mode `md` after the previous solution
    !! in, its new mode, forces and whether the mode changed out.  A pure
    !! function of the pair alone: the loop over the pairs is evaluate_pairs'.
-   pure function evaluate_rough_pair(ifc, pr, kloc, opts, s, md_in, dun, dut, fnprev, fpred, pfloor, first, &
+   pure function evaluate_rough_pair(ifc, pr, kloc, opts, s, md_in, dun, dut, fnprev, fpred, &
+                                     pfloor, first, &
                                      regularise, regularise_slip) result(r)
       type(interface_t), intent(in) :: ifc
       type(contact_pair_t), intent(in) :: pr
@@ -242,7 +250,8 @@ contains
       type(pair_mode_t), intent(in) :: md_in   !! mode of the last solution
       real(dp), intent(in) :: dun, dut         !! closure and slip increments
       real(dp), intent(in) :: fnprev           !! normal force after the previous solution
-      real(dp), intent(in) :: fpred            !! normal force the last solution predicted (its linearisation)
+      real(dp), intent(in) :: fpred            !! normal force the last solution
+                                               !! predicted (its linearisation)
       real(dp), intent(in) :: pfloor           !! floor pressure p_min_ratio p_m
       logical, intent(in) :: first             !! first increment (secant iteration option)
       logical, intent(in) :: regularise        !! contact_state_t%regularise
@@ -303,7 +312,8 @@ contains
          end if
          if (md%closed) then
             if (returning) then
-               fn = pr%area*normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa)
+               fn = pr%area*normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, &
+                                            md%ua, md%pa)
             else if (md%newly_closed) then
                fn = md%kn*(u - md%uthr)
             else
@@ -330,7 +340,8 @@ contains
                held_now = .true.
                md%kn = pr%area*md%pa/max(md%ua - md%uthr, tiny(1.0_dp))
                if (u - md%uthr <= touching_band(ifc, md, .false.)) fn = md%kn*(u - md%uthr)
-            else if (returning .and. ifc%m2 > 1.0_dp .and. u <= md%uthr - utol .and. s%closed .and. s%fn > 0.0_dp .and. &
+            else if (returning .and. ifc%m2 > 1.0_dp .and. u <= md%uthr - utol .and. s%closed &
+                     .and. s%fn > 0.0_dp .and. &
                 .not. (md%held .or. md%newly_closed) .and. may_switch) then
                ! RETURN, a loaded pair overshooting its zero-force point (a Newton step on a
                ! concave branch, m2 > 1): once per increment it is held by the secant from
@@ -372,7 +383,8 @@ contains
 
          ! 2. loading / unloading (SPEC §2.1): reversal starts the unloading branch at
          ! A = (u, p(u)) of the committed state, the pressure taken from the law
-         if (md%closed .and. s%closed .and. .not. md%newly_closed .and. .not. md%on_unloading .and. &
+         if (md%closed .and. s%closed .and. .not. md%newly_closed .and. .not. md%on_unloading &
+               .and. &
              dun < 0.0_dp .and. may_switch) then
             md%on_unloading = .true.
             md%ua = s%un
@@ -383,7 +395,8 @@ contains
                ! opens is decided with the displacements of that solution, not these
                ! (the paper's eq. 4.10: the tangent at the pressure of the previous increment)
                md%kn = pr%area*unloading_tangent(max(s%fn/pr%area, pfloor), &
-                                                 unloading_constant(md%ua, md%pa, ifc%cn2, ifc%m2), ifc%m2)
+                                                 unloading_constant(md%ua, md%pa, ifc%cn2, &
+                                                                    ifc%m2), ifc%m2)
                fn = s%fn + md%kn*dun
             else
                fn = pr%area*normal_pressure(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, .true., md%ua, md%pa)
@@ -411,7 +424,8 @@ contains
          ! 3. tangential (SPEC §4.3 item 3 and 4)
          if (md%closed .and. ifc%friction /= FRICTION_NONE) then
             if (returning) then
-               call tangential_return(ifc, s, md, pr%area, dut, fn, may_switch, ft, r%changed, r%chatter)
+               call tangential_return(ifc, s, md, pr%area, dut, fn, may_switch, ft, r%changed, &
+                                      r%chatter)
                ! the stiffness of the mode (no regularising value left from an earlier
                ! solution), or the secant tangential_return gave a cycling pair
                if (.not. md%tstable) call set_kt(ifc, md)
@@ -441,7 +455,8 @@ contains
    !!   prediction exceeds the force and the tangent takes over: no cycling;
    !! * at zero force (tangent zero): the secant over the increment, which
    !!   does not vanish, so that a body held only by such pairs stays regular.
-   pure real(dp) function newton_normal_stiffness(ifc, md, area, fn0, fnprev, fpred, fn, u, dun) result(k)
+   pure real(dp) function newton_normal_stiffness(ifc, md, area, fn0, fnprev, fpred, fn, u, dun) &
+         result(k)
       type(interface_t), intent(in) :: ifc
       type(pair_mode_t), intent(in) :: md
       real(dp), intent(in) :: area     !! lumped area
@@ -456,7 +471,8 @@ contains
       fref = max(fn0, abs(fnprev), fn, tiny(1.0_dp))
       if (md%on_unloading) fref = max(fref, area*md%pa)
       ktan = area*normal_tangent(u, ifc%cn, ifc%m, ifc%cn2, ifc%m2, md%on_unloading, md%ua, md%pa)
-      if (fpred <= 0.5_dp*fn .and. fn > 1.0e-12_dp*fref .and. u > md%uthr .and. md%on_unloading .and. ifc%m2 <= 1.0_dp) then
+      if (fpred <= 0.5_dp*fn .and. fn > 1.0e-12_dp*fref .and. u > md%uthr .and. md%on_unloading &
+            .and. ifc%m2 <= 1.0_dp) then
          k = fn/(u - md%uthr)
       else if (fpred <= 1.0e-8_dp*fref .and. fn > 1.0e-12_dp*fref .and. u > md%uthr) then
          k = fn/(u - md%uthr)
@@ -507,7 +523,8 @@ contains
       real(dp) :: xb
       integer :: itrial, tsg
       logical :: unloaded
-      call bilinear_return(merge(0.0_dp, s%ft, md%newly_closed), dut, md%kte, ifc%kappa, md%mu*max(fn, 0.0_dp), &
+      call bilinear_return(merge(0.0_dp, s%ft, md%newly_closed), dut, md%kte, ifc%kappa, &
+                           md%mu*max(fn, 0.0_dp), &
                            merge(0.0_dp, s%xb, md%newly_closed), ifc%hardening, ft, xb, itrial)
       md%xb = xb
       tsg = 0
@@ -538,7 +555,8 @@ contains
          end if
       end if
       if (md%tstable .and. abs(dut) > 0.0_dp) then
-         md%kt = min(max(abs(ft - merge(0.0_dp, s%ft, md%newly_closed))/abs(dut), KSEC_LOW*md%kte), md%kte)
+         md%kt = min(max(abs(ft - merge(0.0_dp, s%ft, md%newly_closed))/abs(dut), &
+                         KSEC_LOW*md%kte), md%kte)
       end if
    end subroutine tangential_return
 
@@ -559,7 +577,10 @@ contains
       type(pair_state_t), intent(in) :: s
       type(pair_mode_t), intent(inout) :: md
       real(dp), intent(in) :: fn
-      if (md%closed .and. md%tstate == TS_SLIP .and. md%on_unloading .and. fn <= 1.0e-3_dp*s%fn) md%kt = md%kte
+      if (md%closed .and. md%tstate == TS_SLIP .and. md%on_unloading .and. fn <= 1.0e-3_dp*s%fn) &
+            then
+         md%kt = md%kte
+      end if
    end subroutine vanishing_slip_kt
 
    !> EXPLICIT (the paper): F_T = F_T,prev + K_T dU_T with the stiffness of the
@@ -580,7 +601,8 @@ contains
       select case (md%tstate)
       case (TS_STICK)
          ft = merge(0.0_dp, s%ft, md%newly_closed) + md%kte*dut
-         if (ifc%hardening .and. abs(ft) > max(0.625_dp*limit, s%fy)*(1.0_dp + 1.0e-8_dp) .and. may_switch) then
+         if (ifc%hardening .and. abs(ft) > max(0.625_dp*limit, s%fy)*(1.0_dp + 1.0e-8_dp) .and. &
+               may_switch) then
             ! onto the hardening branch: its slope for the whole increment (eq. 4.15, 4.17)
             md%tstate = TS_PLASTIC
             call set_kt(ifc, md)
@@ -659,7 +681,8 @@ contains
             if (s%on_unloading .and. s%un >= s%ua) s%on_unloading = .false.
             ! irreversible tangential displacement: all but the elastic part (SPEC §2.3)
             dutp = 0.0_dp
-            if (ifc%friction /= FRICTION_NONE .and. md%tstate /= TS_STICK .and. md%kte > 0.0_dp) then
+            if (ifc%friction /= FRICTION_NONE .and. md%tstate /= TS_STICK .and. md%kte > 0.0_dp) &
+                  then
                dutp = dut - (s%ft - merge(0.0_dp, ft_old, md%newly_closed))/md%kte
             end if
             s%utp = s%utp + dutp

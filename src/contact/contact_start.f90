@@ -28,7 +28,8 @@ contains
    !> Largest extent of the mesh in x or y.
    pure real(dp) function model_size(m)
       type(model_t), intent(in) :: m
-      model_size = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), maxval(m%coord(2, :)) - minval(m%coord(2, :)))
+      model_size = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), &
+                       maxval(m%coord(2, :)) - minval(m%coord(2, :)))
    end function model_size
 
    !> Start pressure p_m of eq. (4.1) for the rough interfaces: the resultant
@@ -40,7 +41,8 @@ contains
    !! same contact force.
    subroutine start_pressure(m, fcase, dlam1, st, status)
       type(model_t), intent(in) :: m
-      real(dp), intent(in) :: fcase(:, :, :)   !! (2, npoin, ncase) forces of the load cases at factor 1
+      real(dp), intent(in) :: fcase(:, :, :)   !! (2, npoin, ncase) forces of
+                                               !! the load cases at factor 1
       real(dp), intent(in) :: dlam1(:)         !! (ncase) load factors of the first increment
       type(contact_state_t), intent(inout) :: st
       type(status_t), intent(inout) :: status
@@ -54,7 +56,8 @@ contains
       if (st%p_start > 0.0_dp) return
       allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
       call find_bodies(m, nolinks, body, nbody)
-      call pair_bodies(m, body, nbody, [(m%contact%ifaces(m%contact%pairs(j)%iface)%law == LAW_ROUGH, &
+      call pair_bodies(m, body, nbody, &
+                       [(m%contact%ifaces(m%contact%pairs(j)%iface)%law == LAW_ROUGH, &
                                          j=1, size(m%contact%pairs))], in_a, in_b)
       nbar = 0.0_dp
       aa = 0.0_dp
@@ -76,8 +79,10 @@ contains
       fn = abs(dot_product(resultant(in_a), nbar))
       if (.not. (fn > 0.0_dp)) fn = abs(dot_product(resultant(in_b .and. .not. in_a), nbar))
       if (.not. (fn > 0.0_dp) .or. .not. (aa > 0.0_dp)) then
-         call status%set(STAT_INPUT, 'contact: the first increment applies no force normal to the contact '// &
-                         'surface on either body (it is displacement-driven), so the start pressure p_m of eq. (4.1) '// &
+         call status%set(STAT_INPUT, &
+                         'contact: the first increment applies no force normal to the contact '// &
+                         'surface on either body (it is displacement-driven), so the start &
+                         &pressure p_m of eq. (4.1) '// &
                          'cannot be computed; give it on a CONTACT START card (PM)')
          return
       end if
@@ -111,7 +116,8 @@ contains
    !! Ref: Altenbach & Buczkowski, eq. (4.1); SPEC §4.1.
    subroutine increment_pressure(m, fcase, dlam, st)
       type(model_t), intent(in) :: m
-      real(dp), intent(in) :: fcase(:, :, :)   !! (2, npoin, ncase) forces of the load cases at factor 1
+      real(dp), intent(in) :: fcase(:, :, :)   !! (2, npoin, ncase) forces of
+                                               !! the load cases at factor 1
       real(dp), intent(in) :: dlam(:)          !! (ncase) load factor increments of the increment
       type(contact_state_t), intent(inout) :: st
       integer, allocatable :: body(:), nolinks(:, :)
@@ -133,8 +139,10 @@ contains
       if (.not. resting) return
       allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
       call find_bodies(m, nolinks, body, nbody)
-      call pair_bodies(m, body, nbody, [(m%contact%ifaces(m%contact%pairs(j)%iface)%law == LAW_ROUGH .and. &
-                                         m%contact%pairs(j)%area > 0.0_dp, j=1, size(m%contact%pairs))], in_a, in_b)
+      call pair_bodies(m, body, nbody, &
+                       [(m%contact%ifaces(m%contact%pairs(j)%iface)%law == LAW_ROUGH .and. &
+                                         m%contact%pairs(j)%area > 0.0_dp, j=1, &
+                                         size(m%contact%pairs))], in_a, in_b)
       nbar = 0.0_dp
       aa = 0.0_dp
       do j = 1, size(m%contact%pairs)

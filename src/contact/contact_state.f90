@@ -19,7 +19,8 @@ module contact_state
    private
 
    public :: contact_init, begin_increment, commit_increment, start_force_normal, is_ideal, &
-             drop_regularisation, regularise_slip, check_invariants, frozen_pairs, law_drift, tangential_drift
+             drop_regularisation, regularise_slip, check_invariants, frozen_pairs, law_drift, &
+             tangential_drift
 
 contains
 
@@ -161,12 +162,14 @@ contains
       end do
       do k = 1, size(st%ideal)
          j = st%ideal(k)
-         call ideal_begin(cdef%ifaces(cdef%pairs(j)%iface), st%s(j), st%eps_n(j), st%eps_t(j), st%md(j), &
+         call ideal_begin(cdef%ifaces(cdef%pairs(j)%iface), st%s(j), st%eps_n(j), st%eps_t(j), &
+                          st%md(j), &
                           st%lam_n(j), st%lam_t(j))
       end do
       do k = 1, size(st%rough)
          j = st%rough(k)
-         call rough_begin(cdef%ifaces(cdef%pairs(j)%iface), cdef%pairs(j), st%kloc(j), st%s(j), st%md(j), &
+         call rough_begin(cdef%ifaces(cdef%pairs(j)%iface), cdef%pairs(j), st%kloc(j), st%s(j), &
+                          st%md(j), &
                           first, returning, st%p_start, pfloor, st%p_incr)
       end do
    end subroutine begin_increment
@@ -232,13 +235,15 @@ contains
       end do
       do k = 1, size(st%ideal)
          j = st%ideal(k)
-         call ideal_commit(cdef%ifaces(cdef%pairs(j)%iface), st%md(j), st%fn(j), st%ft(j), st%dut(j), st%s(j))
+         call ideal_commit(cdef%ifaces(cdef%pairs(j)%iface), st%md(j), st%fn(j), st%ft(j), &
+                           st%dut(j), st%s(j))
          st%fref = max(st%fref, st%s(j)%fn)
       end do
       do k = 1, size(st%rough)
          j = st%rough(k)
          ft_old = st%s(j)%ft
-         call rough_commit(cdef%ifaces(cdef%pairs(j)%iface), cdef%pairs(j), st%md(j), st%fn(j), st%ft(j), ft_old, &
+         call rough_commit(cdef%ifaces(cdef%pairs(j)%iface), cdef%pairs(j), st%md(j), st%fn(j), &
+                           st%ft(j), ft_old, &
                            st%dut(j), st%s(j))
       end do
    end subroutine commit_increment
@@ -263,7 +268,8 @@ contains
       integer, intent(out) :: nbad
       character(len=:), allocatable, intent(out) :: msg
       integer, allocatable, intent(out), optional :: pairs(:)   !! the pairs concerned, ascending
-      real(dp), intent(in), optional :: fscale    !! the run's force scale (absent: the largest committed |F_n|)
+      real(dp), intent(in), optional :: fscale    !! the run's force scale (absent:
+                                                  !! the largest committed |F_n|)
       real(dp) :: fmax, tol
       integer :: j
       logical :: hit(size(st%s))
@@ -277,11 +283,15 @@ contains
       do j = 1, size(st%s)
          associate (s => st%s(j))
             write (b, '(i0)') j
-            if (s%closed .and. s%fn < -tol) call bad('pair '//trim(b)//' is closed with a tensile normal force')
+            if (s%closed .and. s%fn < -tol) then
+               call bad('pair '//trim(b)//' is closed with a tensile normal force')
+            end if
             if (.not. s%closed .and. (abs(s%fn) > 0.0_dp .or. abs(s%ft) > 0.0_dp)) then
                call bad('pair '//trim(b)//' is open but carries a force')
             end if
-            if (abs(s%ft) > s%mu*max(s%fn, 0.0_dp) + tol) call bad('pair '//trim(b)//' has |F_T| > mu F_n')
+            if (abs(s%ft) > s%mu*max(s%fn, 0.0_dp) + tol) then
+               call bad('pair '//trim(b)//' has |F_T| > mu F_n')
+            end if
             if (s%ve < ve_old(j) - 1.0e-14_dp*max(1.0_dp, ve_old(j))) then
                call bad('pair '//trim(b)//': the effective slip decreased')
             end if
@@ -331,7 +341,8 @@ contains
       do j = 1, size(st%s)
          associate (s => st%s(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             if (.not. s%closed .or. ifc%law /= LAW_ROUGH) cycle
-            f = pr%area*normal_pressure(s%un, ifc%cn, ifc%m, ifc%cn2, ifc%m2, s%on_unloading, s%ua, s%pa)
+            f = pr%area*normal_pressure(s%un, ifc%cn, ifc%m, ifc%cn2, ifc%m2, s%on_unloading, &
+                                        s%ua, s%pa)
             drift = max(drift, abs(s%fn - f)/fmax)
          end associate
       end do
@@ -357,8 +368,10 @@ contains
    pure subroutine tangential_drift(cdef, st, tlaw, drift, worst)
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(in) :: st
-      real(dp), allocatable, intent(inout) :: tlaw(:, :)  !! (3, npair) the law's F_T, back force, and F_n
-      real(dp), intent(out) :: drift                 !! relative to the largest mu F_n of the closed pairs
+      real(dp), allocatable, intent(inout) :: tlaw(:, :)  !! (3, npair) the law's F_T,
+                                                          !! back force, and F_n
+      real(dp), intent(out) :: drift                 !! relative to the largest
+                                                     !! mu F_n of the closed pairs
       integer, intent(out) :: worst                  !! the pair farthest off (0: none)
       integer :: j, itrial
       real(dp) :: fmax, f0, x0, ft, xb, d, dmax
@@ -371,14 +384,16 @@ contains
       fmax = 0.0_dp
       dmax = 0.0_dp
       do j = 1, size(st%s)
-         associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+         associate (s => st%s(j), md => st%md(j), pr => cdef%pairs(j), &
+                    ifc => cdef%ifaces(cdef%pairs(j)%iface))
             if (.not. s%closed .or. ifc%law /= LAW_ROUGH .or. ifc%friction == FRICTION_NONE) then
                tlaw(:, j) = 0.0_dp
                cycle
             end if
             f0 = merge(0.0_dp, tlaw(1, j), md%newly_closed)
             x0 = merge(0.0_dp, tlaw(2, j), md%newly_closed)
-            call bilinear_return(f0, st%dut(j), md%kte, ifc%kappa, md%mu*max(s%fn, 0.0_dp), x0, ifc%hardening, &
+            call bilinear_return(f0, st%dut(j), md%kte, ifc%kappa, md%mu*max(s%fn, 0.0_dp), x0, &
+                                 ifc%hardening, &
                                  ft, xb, itrial)
             d = abs(s%ft - ft)
             if (s%fn <= 1.0e-12_dp*max(tlaw(3, j), pr%area*md%pa, tiny(1.0_dp))) then

@@ -32,7 +32,8 @@ module contact_surfaces
    implicit none
    private
 
-   public :: edge_nodes, surface_edges, boundary_edges_of, check_listed, surface_nodes, surface_normals, &
+   public :: edge_nodes, surface_edges, boundary_edges_of, check_listed, surface_nodes, &
+         surface_normals, &
              lumped_areas, edge_shares, edge_scales
 
 contains
@@ -84,7 +85,8 @@ contains
    !! `nodes`, ordered by their end nodes (lowest first).
    pure subroutine boundary_edges_of(m, nodes, ielem, iedge)
       type(model_t), intent(in) :: m
-      integer, intent(in) :: nodes(:)                      !! node numbers (out-of-range ones are ignored)
+      integer, intent(in) :: nodes(:)                      !! node numbers (out-of-range
+                                                           !! ones are ignored)
       integer, allocatable, intent(out) :: ielem(:)        !! element of each edge
       integer, allocatable, intent(out) :: iedge(:)        !! its edge number
       logical, allocatable :: inset(:)
@@ -123,8 +125,14 @@ contains
       j = 0
       do i = 1, n
          shared = .false.
-         if (i > 1) shared = shared .or. (key1(idx(i)) == key1(idx(i - 1)) .and. key2(idx(i)) == key2(idx(i - 1)))
-         if (i < n) shared = shared .or. (key1(idx(i)) == key1(idx(i + 1)) .and. key2(idx(i)) == key2(idx(i + 1)))
+         if (i > 1) then
+            shared = shared .or. (key1(idx(i)) == key1(idx(i - 1)) .and. key2(idx(i)) == &
+                                  key2(idx(i - 1)))
+         end if
+         if (i < n) then
+            shared = shared .or. (key1(idx(i)) == key1(idx(i + 1)) .and. key2(idx(i)) == &
+                                  key2(idx(i + 1)))
+         end if
          if (shared) cycle
          j = j + 1
          ielem(j) = ce(idx(i))
@@ -204,7 +212,8 @@ contains
       do q = 1, size(spec%nodes)
          if (mark(spec%nodes(q))) cycle
          nbad = nbad + 1
-         if (nbad == 1) msg = 'node(s) on no boundary edge formed by the listed nodes (a typo, a node '// &
+         if (nbad == 1) msg = &
+               'node(s) on no boundary edge formed by the listed nodes (a typo, a node '// &
                               'of another body, or an interior node):'
          if (nbad <= 10) msg = msg//' '//itoa(spec%nodes(q))
       end do
@@ -264,10 +273,12 @@ contains
    !!
    !! Ref: Altenbach & Buczkowski, eqs. (3.22), (3.26), (A1)-(A6).
    pure subroutine lumped_areas(m, ielem, iedge, paired, area)
-      type(model_t), intent(in) :: m              !! coord [length], ntype, thickness of each element's material
+      type(model_t), intent(in) :: m              !! coord [length], ntype, thickness
+                                                  !! of each element's material
       integer, intent(in) :: ielem(:), iedge(:)   !! the surface's edges (surface_edges)
       logical, intent(in) :: paired(:)            !! (npoin) nodes of the contact zone
-      real(dp), intent(out) :: area(:)            !! (npoin) A_j [length^2]: length x thickness, or x 2 pi r
+      real(dp), intent(out) :: area(:)            !! (npoin) A_j [length^2]: length
+                                                  !! x thickness, or x 2 pi r
       real(dp) :: xy(2, 3), share(3), chord
       integer :: k, nd(3), nn, ie
       area = 0.0_dp
@@ -327,8 +338,10 @@ contains
       type(model_t), intent(in) :: m              !! coord [length], ntype, thicknesses
       integer, intent(in) :: ielem(:), iedge(:)   !! the surface's edges (surface_edges)
       logical, intent(in) :: paired(:)            !! (npoin) nodes of the contact zone
-      real(dp), intent(out) :: length(:)          !! (npoin) shortest adjacent chord [length], 0 off the edges
-      real(dp), intent(out) :: share(:)           !! (npoin) equal share of the adjacent areas [length^2]
+      real(dp), intent(out) :: length(:)          !! (npoin) shortest adjacent chord
+                                                  !! [length], 0 off the edges
+      real(dp), intent(out) :: share(:)           !! (npoin) equal share of the
+                                                  !! adjacent areas [length^2]
       real(dp) :: xy(2, 3), ae, le
       integer :: k, nd(3), nn
       length = huge(1.0_dp)

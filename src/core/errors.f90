@@ -13,7 +13,8 @@ module errors
    implicit none
    private
 
-   public :: input_error_t, error_list_t, status_t, assert, fatal_internal, terminate, skip_exit_handlers
+   public :: input_error_t, error_list_t, status_t, assert, fatal_internal, terminate, &
+         skip_exit_handlers
    public :: printable
    public :: STAT_OK, STAT_SINGULAR, STAT_NEGATIVE_PIVOT, STAT_JACOBIAN, &
              STAT_NO_CONVERGENCE, STAT_CHATTER, STAT_SOLVER, STAT_IO, STAT_INPUT, &
@@ -37,7 +38,8 @@ module errors
    integer, parameter :: EXIT_INTERNAL = 1
    integer, parameter :: EXIT_INPUT = 2
    integer, parameter :: EXIT_NUMERICAL = 3
-   integer, parameter :: EXIT_DOUBTFUL = 4        !! completed with doubts (frozen states, drift, invariants)
+   integer, parameter :: EXIT_DOUBTFUL = 4        !! completed with doubts (frozen
+                                                  !! states, drift, invariants)
 
    !> Set by skip_exit_handlers: terminate ends the process without the exit handlers.
    logical :: quick_exit = .false.

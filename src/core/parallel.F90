@@ -87,7 +87,8 @@ contains
       call mpi_comm_rank(MPI_COMM_WORLD, my_rank, ierr)
       call mpi_comm_size(MPI_COMM_WORLD, n_ranks, ierr)
       if (c_atexit(c_funloc(finish_at_exit)) /= 0) then
-         call fatal_internal('cannot register the MPI finalization at exit', 'parallel.F90', __LINE__)
+         call fatal_internal('cannot register the MPI finalization at exit', 'parallel.F90', &
+                             __LINE__)
       end if
       if (my_rank /= 0) then
          ! a worker has no terminal: every message appears once, from the root
@@ -139,7 +140,9 @@ contains
       integer :: c(COMMAND_WORDS)
       if (n_ranks == 1) return
       if (my_rank /= 0) call fatal_internal('send_command on a worker', 'parallel.F90', __LINE__)
-      if (cmd(1) == COMMAND_QUIT) call fatal_internal('send_command: reserved command', 'parallel.F90', __LINE__)
+      if (cmd(1) == COMMAND_QUIT) then
+         call fatal_internal('send_command: reserved command', 'parallel.F90', __LINE__)
+      end if
       c = cmd
       serving = .true.
       call broadcast_ints(c)

@@ -52,7 +52,8 @@ contains
    pure real(dp) function resolvable_limit(tol, scale, magnitude) result(limit)
       real(dp), intent(in) :: tol         !! the criterion (relative)
       real(dp), intent(in) :: scale       !! the force the residual is relative to
-      real(dp), intent(in) :: magnitude   !! sum of |terms| that cancel in the residual (the same unit)
+      real(dp), intent(in) :: magnitude   !! sum of |terms| that cancel in
+                                          !! the residual (the same unit)
       limit = tol + roundoff_floor(magnitude)/max(scale, tiny(1.0_dp))
    end function resolvable_limit
 end module roundoff

@@ -28,12 +28,14 @@ contains
    subroutine number_equations(m, plan, links, map, xadj, adjncy, rep, status, ties)
       type(model_t), intent(in) :: m
       type(run_plan_t), intent(in) :: plan          !! its ordering (RCM or the user's) and why
-      integer, intent(in) :: links(:, :)            !! (2, nlink) extra node couplings (contact pairs, ties)
+      integer, intent(in) :: links(:, :)            !! (2, nlink) extra node couplings
+                                                    !! (contact pairs, ties)
       type(dof_map_t), intent(out) :: map
       integer, allocatable, intent(out) :: xadj(:), adjncy(:)   !! equation graph (CSR, 1-based)
       type(numbering_report_t), intent(out) :: rep
       type(status_t), intent(inout) :: status
-      integer, intent(in), optional :: ties(:, :)   !! (3, ntie) master, slave, dof: passed to build_dof_map
+      integer, intent(in), optional :: ties(:, :)   !! (3, ntie) master, slave, dof:
+                                                    !! passed to build_dof_map
       integer, allocatable :: order(:), nxadj(:), nadj(:), x0(:), a0(:)
       type(dof_map_t) :: map0
       integer :: ip
@@ -50,7 +52,8 @@ contains
          call build_dof_map(m, order, map0)
       end if
       call build_equation_graph(map0, nxadj, nadj, x0, a0)
-      call graph_profile(map0%neq, x0, a0, rep%profile_before, rep%mean_before, rep%max_before, status)
+      call graph_profile(map0%neq, x0, a0, rep%profile_before, rep%mean_before, rep%max_before, &
+                         status)
       if (.not. status%ok()) return
       if (plan%ordering /= ORDERING_RCM) then
          map = map0
@@ -69,6 +72,7 @@ contains
          call build_dof_map(m, order, map)
       end if
       call build_equation_graph(map, nxadj, nadj, xadj, adjncy)
-      call graph_profile(map%neq, xadj, adjncy, rep%profile_after, rep%mean_after, rep%max_after, status)
+      call graph_profile(map%neq, xadj, adjncy, rep%profile_after, rep%mean_after, rep%max_after, &
+                         status)
    end subroutine number_equations
 end module equation_numbering

@@ -16,7 +16,8 @@ module increment_attempt
    use assembly, only: coupling_t, load_increment
    use contact_assembly, only: contact_springs_t
    use contact_types, only: contact_options_t, contact_pair_t
-   use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, augment_multipliers, &
+   use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, &
+         augment_multipliers, &
                                 drop_regularisation, regularise_slip, &
                                 anchor_regularisation, release_anchors, settle_frozen
    use contact_start, only: increment_pressure
@@ -26,36 +27,47 @@ module increment_attempt
    use pretension_assembly, only: pretension_run_t
    implicit none
    private
-   public :: analysis_t, attempt_t, attempt_failure, describe_singular, out_of_balance, attempt_increment
+   public :: analysis_t, attempt_t, attempt_failure, describe_singular, out_of_balance, &
+         attempt_increment
 
    !> Everything the increment loop works with.
    type :: analysis_t
       type(dof_map_t) :: map
-      class(linear_solver_t), allocatable :: solver  !! the bodies' solver, until the contact system takes it
+      class(linear_solver_t), allocatable :: solver  !! the bodies' solver, until
+                                                     !! the contact system takes it
       class(contact_system_t), allocatable :: sys    !! the system the increments solve
       type(contact_springs_t) :: springs             !! equations and matrices of the pairs' springs
       type(coupling_t) :: coup
       real(dp), allocatable :: fcase(:, :, :)      !! (2, npoin, ncase) forces at factor 1
-      real(dp), allocatable :: ucase(:, :, :)      !! (2, npoin, ncase) prescribed displacements at factor 1
+      real(dp), allocatable :: ucase(:, :, :)      !! (2, npoin, ncase) prescribed
+                                                   !! displacements at factor 1
       real(dp), allocatable :: diag(:)             !! (neq) diagonal of K_AB
-      real(dp), allocatable :: absrow(:)           !! (neq) sum of |k_ij| of K_AB's row (its forces' round-off, roundoff)
+      real(dp), allocatable :: absrow(:)           !! (neq) sum of |k_ij| of K_AB's row (its forces'
+                                                   !! round-off, roundoff)
       logical, allocatable :: restrained(:, :)     !! (2, npoin)
       integer :: npair = 0
       integer :: maxrep = 30                       !! cap on solutions of one increment
       logical :: has_contact = .false.
       logical :: returning = .false.               !! RETURN update (Newton)
-      logical :: modified = .false.                !! modified Newton: stiffness kept within an increment
-      logical :: system_current = .false.          !! the system holds the springs of the current modes
-      logical :: pending = .false.                 !! the recovery of the full field of steps is postponed
-      real(dp), allocatable :: kref(:, :, :)       !! (nd, nd, npair) reference springs (contact_system)
+      logical :: modified = .false.                !! modified Newton: stiffness
+                                                   !! kept within an increment
+      logical :: system_current = .false.          !! the system holds the springs
+                                                   !! of the current modes
+      logical :: pending = .false.                 !! the recovery of the full
+                                                   !! field of steps is postponed
+      real(dp), allocatable :: kref(:, :, :)       !! (nd, nd, npair) reference
+                                                   !! springs (contact_system)
       real(dp), allocatable :: spacing(:)          !! (npair) distance to the nearest other pair
-      real(dp), allocatable :: tlaw(:, :)          !! (3, npair) the tangential law along the committed
+      real(dp), allocatable :: tlaw(:, :)          !! (3, npair) the tangential
+                                                   !! law along the committed
                                                    !! history (contact_algorithm's tangential_drift)
-      integer, allocatable :: body(:, :)           !! (2, npoin) body of each node, x and y (equilibrium check)
+      integer, allocatable :: body(:, :)           !! (2, npoin) body of each node,
+                                                   !! x and y (equilibrium check)
       integer :: nbody = 0
       real(dp) :: force_scale = tiny(1.0_dp)       !! largest nodal force seen so far
       logical :: warned_closure = .false.
-      type(pretension_run_t) :: pret               !! pretension sections: spring stiffnesses (pretension_assembly)
+      type(pretension_run_t) :: pret               !! pretension sections: spring stiffnesses
+                                                   !! (pretension_assembly)
    end type analysis_t
 
 
@@ -68,12 +80,17 @@ module increment_attempt
       logical :: converged = .false.
       logical :: changing = .false.                !! springs still changed their modes at the end
       real(dp) :: rnorm = 0.0_dp                   !! relative out-of-balance force
-      real(dp) :: rtol = 0.0_dp                    !! the limit of rnorm: TOLR raised by the round-off floor (roundoff)
-      real(dp) :: fscale = 0.0_dp                  !! the force the out-of-balance force was measured against
-      real(dp) :: dnorm = 0.0_dp                   !! last correction relative to the increment (Newton)
+      real(dp) :: rtol = 0.0_dp                    !! the limit of rnorm: TOLR raised by the
+                                                   !! round-off floor (roundoff)
+      real(dp) :: fscale = 0.0_dp                  !! the force the out-of-balance
+                                                   !! force was measured against
+      real(dp) :: dnorm = 0.0_dp                   !! last correction relative
+                                                   !! to the increment (Newton)
       real(dp) :: duscale = 0.0_dp                 !! largest displacement increment of a converged
-                                                   !! attempt that was not a hold (the scale of a hold's corrections)
-      integer :: nchanged = 0                      !! pairs that changed their mode in the last solution
+                                                   !! attempt that was not a hold (the scale of a
+                                                   !! hold's corrections)
+      integer :: nchanged = 0                      !! pairs that changed their
+                                                   !! mode in the last solution
       integer :: first_changed = 0                 !! the first of them
    end type attempt_t
 
@@ -102,22 +119,29 @@ contains
       if (.not. autoinc) advice = advice//', use OPTIONS AUTOINC'
       advice = advice//' or raise CONTACT REPEATS (now '//itoa(maxrep)//')'
       if (att%changing .or. st%chatter) then
-         what = 'the contact states still change ('//itoa(att%nchanged)//' pair(s) in the last solution, '// &
+         what = 'the contact states still change ('//itoa(att%nchanged)// &
+               ' pair(s) in the last solution, '// &
                 'the first pair '//itoa(att%first_changed)//')'
-         if (st%chatter) what = what//'; a pair changed its state 6 times within the increment (chatter)'
+         if (st%chatter) then
+            what = what//'; a pair changed its state 6 times within the increment (chatter)'
+         end if
       else if (.not. (returning .or. st%has_ideal)) then
          return
       else if (st%has_ideal .and. att%rnorm <= 1.0e-8_dp .and. st%violation > st%tol_pen) then
-         what = 'ideal contact still penetrates or slips by '//rtoa(st%violation)//' > the tolerance '// &
-                rtoa(st%tol_pen)//' (AUGMENTED TOL) after '//itoa(st%augmentations)//' multiplier updates'
+         what = 'ideal contact still penetrates or slips by '//rtoa(st%violation)// &
+               ' > the tolerance '// &
+                rtoa(st%tol_pen)//' (AUGMENTED TOL) after '//itoa(st%augmentations)// &
+                ' multiplier updates'
          advice = advice//' or the AUGMENTED factor'
       else if (att%rnorm > max(att%rtol, opts%tol_residual)) then
          what = 'the relative out-of-balance force '//rtoa(att%rnorm)//' > the tolerance '// &
                 rtoa(opts%tol_residual)//' (CONTACT CONVERGE TOLR)'
-         if (att%rtol > opts%tol_residual*(1.0_dp + 1.0e-3_dp)) what = what//' raised to '//rtoa(att%rtol)// &
+         if (att%rtol > opts%tol_residual*(1.0_dp + 1.0e-3_dp)) what = what//' raised to '// &
+               rtoa(att%rtol)// &
             ' by the round-off of the forces that cancel in it'
       else if (returning .and. att%dnorm > opts%tol_displacement) then
-         what = 'the last displacement correction '//rtoa(att%dnorm)//' of the increment > the tolerance '// &
+         what = 'the last displacement correction '//rtoa(att%dnorm)// &
+               ' of the increment > the tolerance '// &
                 rtoa(opts%tol_displacement)//' (CONTACT CONVERGE TOLU)'
       else
          what = 'ideal contact: slipping pairs still off mu F_n after '//itoa(st%augmentations)// &
@@ -181,8 +205,10 @@ contains
       detail = status%message(k + 1:)
       if (k > 0) detail = status%message(k + 2:)
       status%message = 'singular or unrestrained model at '//an%map%describe(ieq)//': '//detail
-      if (an%has_contact) status%message = status%message//'; a body held only by contact springs '// &
-                                           'has no support once they open (normal) or slip (tangential)'
+      if (an%has_contact) status%message = status%message// &
+            '; a body held only by contact springs '// &
+                                           'has no support once they open (normal) or slip &
+                                           &(tangential)'
    end subroutine describe_singular
 
    !> One attempt at an increment of the load factors dlam from the committed
@@ -216,7 +242,10 @@ contains
       type(status_t) :: singular
       integer :: spent
       call attempt_pass(an, m, st, dlam, carry, fext_new, first, .false., att, status)
-      if (status%code /= STAT_SINGULAR .or. .not. (an%has_contact .and. an%returning .and. st%has_rough)) return
+      if (status%code /= STAT_SINGULAR .or. .not. (an%has_contact .and. an%returning .and. &
+                                                   st%has_rough)) then
+         return
+      end if
       spent = att%solutions
       singular = status
       status = status_t()
@@ -244,7 +273,8 @@ contains
       real(dp) :: fscale, dnorm, rshare
       logical :: need_matrix, done, again, newton, hold, anchored
 
-      allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), rpred(an%springs%nd, an%npair), &
+      allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), &
+                rpred(an%springs%nd, an%npair), &
                 changed(an%npair))
       rvec = 0.0_dp
       rpred = 0.0_dp
@@ -261,7 +291,8 @@ contains
       hold = .false.
       anchored = .false.
       rshare = 0.0_dp
-      call load_increment(an%coup, an%map, an%fcase, an%ucase, an%restrained, dlam, carry, rhs, att%du)
+      call load_increment(an%coup, an%map, an%fcase, an%ucase, an%restrained, dlam, carry, rhs, &
+                          att%du)
       fscale = max(maxval([0.0_dp, abs(rhs)]), maxval(abs(fext_new)), 1.0e-300_dp)
       ! spring forces and modes at the start of the increment
       if (an%has_contact) then
@@ -278,7 +309,8 @@ contains
       maxit = 1
       if (an%has_contact) maxit = an%maxrep
       do iter = 1, maxit
-         ! half the solutions spent: the modes' own stiffnesses for the rest (no regularising springs)
+         ! half the solutions spent: the modes' own stiffnesses for the rest (no regularising
+         ! springs)
          if (an%has_contact .and. iter == maxit/2 + 1 .and. .not. st%regularise_slip) then
             call drop_regularisation(m%contact, st, need_matrix)
          end if
@@ -291,7 +323,9 @@ contains
             ! an increment driven only through springs of prescribed nodes (a rigid
             ! body's reference node belongs to no element) has no other force to
             ! measure its out-of-balance force against
-            if (fscale <= 1.0e-300_dp .and. an%map%neq > 0) fscale = max(maxval(abs(rhs)), 1.0e-300_dp)
+            if (fscale <= 1.0e-300_dp .and. an%map%neq > 0) then
+               fscale = max(maxval(abs(rhs)), 1.0e-300_dp)
+            end if
             ! an increment that holds a zero load (nothing but the carried out-of-balance
             ! force drives it) is measured against the last increment's scale
             ! (the load, a sum of increments, is zero to round-off of the run's forces)
@@ -342,7 +376,8 @@ contains
                call release_anchors(st)
                anchored = .false.
                call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
-               call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, m%contact%opts%tol_residual, att)
+               call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, &
+                                   m%contact%opts%tol_residual, att)
                if (att%rnorm > att%rtol) exit
             end if
             if (.not. st%has_ideal) then
@@ -377,7 +412,8 @@ contains
          logical, intent(out) :: again
          call evaluate_pairs(m%contact, st, att%du, changed, first)
          call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
-         call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, m%contact%opts%tol_residual, att)
+         call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, m%contact%opts%tol_residual, &
+                             att)
          att%changing = any(changed)
          att%nchanged = count(changed)
          att%first_changed = findloc(changed, .true., dim=1)

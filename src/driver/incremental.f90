@@ -42,22 +42,27 @@ module incremental
    use solver_factory, only: create_solver, plan_run
    use contact_system, only: contact_equations
    use contact_system_factory, only: create_contact_system, contact_system_kind
-   use run_plan, only: run_plan_t, CHOICE_AUTOMATIC, SCHEME_INCREMENTAL, SCHEME_MODIFIED, CONDENSE_OFF
+   use run_plan, only: run_plan_t, CHOICE_AUTOMATIC, SCHEME_INCREMENTAL, SCHEME_MODIFIED, &
+         CONDENSE_OFF
    use assembly, only: assemble_bodies, assemble_load_cases
    use contact_assembly, only: pair_links, spring_nodal_forces
    use body_fields, only: recover_stresses, update_reactions, number_bodies, body_imbalance, &
                           stiffness_range, zero_fields, estimate_error
-   use contact_algorithm, only: contact_state_t, commit_increment, law_drift, MAX_SWITCH, tangential_drift
-   use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
+   use contact_algorithm, only: contact_state_t, commit_increment, law_drift, MAX_SWITCH, &
+         tangential_drift
+   use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, &
+         doubt_summary, &
                          sliding_warning, run_history_t, IMBALANCE_NOT_COMPUTED, &
                          imbalance_limit
    use contact_start, only: init_contact_states, start_pressure
    use increment_attempt, only: analysis_t, attempt_t, attempt_failure, describe_singular
    use contact_fields, only: build_contact_fields, pair_spacing
-   use contact_energy, only: energy_t, energy_init, energy_begin, energy_commit, energy_fields, energy_cycles
+   use contact_energy, only: energy_t, energy_init, energy_begin, energy_commit, energy_fields, &
+         energy_cycles
    use run_report, only: run_report_t, run_end_t
    use pretension_section, only: pretension_links
-   use pretension_assembly, only: assemble_pretension, pretension_nodal_forces, section_forces, section_shortening
+   use pretension_assembly, only: assemble_pretension, pretension_nodal_forces, section_forces, &
+         section_shortening
    use pretension_control, only: attempt_with_pretension
    implicit none
    private
@@ -65,7 +70,8 @@ module incremental
 
    !> Choices of the command line that override or complement the deck.
    type :: run_options_t
-      character(len=:), allocatable :: results_path   !! HDF5 file ('' = <deck>.h5 in the working directory)
+      character(len=:), allocatable :: results_path   !! HDF5 file ('' = <deck>.h5
+                                                      !! in the working directory)
       character(len=:), allocatable :: listing_path   !! listing file ('' = <results>.lis)
       character(len=:), allocatable :: solver_name    !! '' = the deck's choice
       logical :: quiet = .false.                      !! no terminal output except errors
@@ -85,9 +91,12 @@ module incremental
       character(len=:), allocatable :: results_path
       logical :: reported = .false.              !! a failure was already printed
       integer :: warnings = 0                    !! warnings printed about the method (sliding)
-      type(run_doubts_t) :: doubts               !! doubtful steps: the run ends doubtful (exit code 4)
-      type(energy_t) :: energy                   !! energy dissipated by the contact laws (contact_energy)
-      type(cycle_table_t) :: cycles              !! the load cycles found in the history, at the end of the run
+      type(run_doubts_t) :: doubts               !! doubtful steps: the run ends
+                                                 !! doubtful (exit code 4)
+      type(energy_t) :: energy                   !! energy dissipated by the contact
+                                                 !! laws (contact_energy)
+      type(cycle_table_t) :: cycles              !! the load cycles found in the
+                                                 !! history, at the end of the run
    end type run_result_t
 
 contains
@@ -146,8 +155,11 @@ contains
       else if (status%code /= STAT_INPUT) then
          ! a numerical failure before the first increment: the result file
          ! keeps the mesh and says why (the listing and terminal too)
-         if (.not. allocated(numbering%method)) numbering = numbering_report_t(method='NONE', reason='not reached')
-         if (.not. allocated(res%info%solver)) res%info = run_info_t(plan=plan, solver=solver_name, system='', &
+         if (.not. allocated(numbering%method)) then
+            numbering = numbering_report_t(method='NONE', reason='not reached')
+         end if
+         if (.not. allocated(res%info%solver)) res%info = &
+               run_info_t(plan=plan, solver=solver_name, system='', &
                                        npair=an%npair, returning=an%returning, modified=an%modified)
          call zero_fields(m, res%body_fields_t)
          call out%open(m, numbering, res%info, res%body_fields_t, .true., ostat)
@@ -161,7 +173,8 @@ contains
    !! equations; the choice of the contact system.
    subroutine set_up(m, solver_name, plan, an, numbering, status)
       type(model_t), intent(in) :: m
-      character(len=*), intent(in) :: solver_name   !! the plan's solver as named (create_solver refuses a bad one)
+      character(len=*), intent(in) :: solver_name   !! the plan's solver as named (create_solver
+                                                    !! refuses a bad one)
       type(run_plan_t), intent(inout) :: plan       !! gets its contact system
       type(analysis_t), intent(inout) :: an
       type(numbering_report_t), intent(out) :: numbering
@@ -202,7 +215,8 @@ contains
       ! pretension sections: the lock measures the section between solutions, so the full system
       if (an%pret%n > 0) plan%condense = CONDENSE_OFF
       if (an%has_contact) plan%contact_system = contact_system_kind(plan%condense, an%npair, &
-                                                  size(contact_equations(an%springs%peq, an%map%neq)), an%solver)
+                                                  size(contact_equations(an%springs%peq, &
+                                                                         an%map%neq)), an%solver)
       call create_contact_system(plan%contact_system, an%sys)
    end subroutine set_up
 
@@ -242,10 +256,14 @@ contains
       if (.not. status%ok()) return
       res%restrained = an%restrained
       ! what the run uses, for the headers and the result file
-      res%info = run_info_t(plan=plan, solver=an%sys%solver%name(), system=an%sys%describe(), returning=an%returning, &
-                            modified=an%modified, neq=an%map%neq, nres=an%map%nres, npair=an%npair, &
-                            condensed=an%sys%condensed, system_bytes=an%sys%memory_bytes(), max_repeats=an%maxrep, &
-                            autoinc=m%autoinc, autoinc_min=m%autoinc_min, autoinc_easy=m%autoinc_easy, &
+      res%info = run_info_t(plan=plan, solver=an%sys%solver%name(), system=an%sys%describe(), &
+                            returning=an%returning, &
+                            modified=an%modified, neq=an%map%neq, nres=an%map%nres, &
+                            npair=an%npair, &
+                            condensed=an%sys%condensed, system_bytes=an%sys%memory_bytes(), &
+                            max_repeats=an%maxrep, &
+                            autoinc=m%autoinc, autoinc_min=m%autoinc_min, &
+                            autoinc_easy=m%autoinc_easy, &
                             max_switch=MAX_SWITCH)
    end subroutine start_run
 
@@ -264,7 +282,8 @@ contains
       logical :: first, rough_newton, last, written, full
       real(dp) :: frac, step, s
 
-      allocate (fext(2, m%npoin), fext_new(2, m%npoin), carry(an%map%neq), dlam(m%ncase), ve_old(an%npair))
+      allocate (fext(2, m%npoin), fext_new(2, m%npoin), carry(an%map%neq), dlam(m%ncase), &
+                ve_old(an%npair))
       fext = 0.0_dp
       carry = 0.0_dp
       nstep = 0
@@ -282,26 +301,33 @@ contains
             do ic = 1, m%ncase
                fext_new = fext_new + dlam(ic)*an%fcase(:, :, ic)
             end do
-            if (first .and. an%has_contact .and. res%contact%has_rough .and. m%contact%opts%p_start <= 0.0_dp) then
+            if (first .and. an%has_contact .and. res%contact%has_rough .and. &
+                  m%contact%opts%p_start <= 0.0_dp) then
                call start_pressure(m, an%fcase, dlam, res%contact, status)
                if (.not. status%ok()) exit deck
             end if
-            call attempt_with_pretension(an, m, res%contact, dlam, carry, fext_new, first, att, status)
+            call attempt_with_pretension(an, m, res%contact, dlam, carry, fext_new, first, att, &
+                                         status)
             call check_finite_attempt(att%du, res%contact, an%has_contact, status)
             if (.not. m%autoinc) then
                if (.not. status%ok()) exit deck
-               if (an%has_contact) call attempt_failure(att, res%contact, m%contact%opts, rough_newton, m%autoinc, &
+               if (an%has_contact) call attempt_failure(att, res%contact, m%contact%opts, &
+                                                        rough_newton, m%autoinc, &
                                                         an%maxrep, nstep + 1, status)
                if (.not. status%ok()) exit deck
             else if (.not. status%ok() .or. .not. att%converged .or. res%contact%chatter) then
                ! cut the step and try again from the committed state
                if (s <= m%autoinc_min*(1.0_dp + 1.0e-9_dp)) then
-                  if (status%ok() .and. an%has_contact) call attempt_failure(att, res%contact, m%contact%opts, &
-                                                        rough_newton, m%autoinc, an%maxrep, nstep + 1, status)
-                  if (status%ok()) call status%set(STAT_NO_CONVERGENCE, 'contact states keep changing in increment '// &
+                  if (status%ok() .and. an%has_contact) call &
+                        attempt_failure(att, res%contact, m%contact%opts, &
+                                                        rough_newton, m%autoinc, an%maxrep, &
+                                                        nstep + 1, status)
+                  if (status%ok()) call status%set(STAT_NO_CONVERGENCE, &
+                                                   'contact states keep changing in increment '// &
                                                    itoa(nstep + 1)//' even at the smallest step')
                   status%message = status%message//' (automatic increments: smallest step '// &
-                                   rtoa(m%autoinc_min)//' of deck increment '//itoa(inc)//' reached)'
+                                   rtoa(m%autoinc_min)//' of deck increment '//itoa(inc)// &
+                                   ' reached)'
                   exit deck
                end if
                status = status_t()
@@ -332,22 +358,33 @@ contains
             if (an%has_contact) call commit_increment(m%contact, res%contact)
             res%disp = res%disp + att%du
             srec = step_record_t(step=nstep, deck_increment=inc, fraction=frac, cuts=cuts, &
-                                 lambda=m%lambda(:, inc - 1) + (m%lambda(:, inc) - m%lambda(:, inc - 1))*frac, &
+                                 lambda=m%lambda(:, inc - 1) + &
+                                 (m%lambda(:, inc) - m%lambda(:, inc - 1))*frac, &
                                  solutions=att%solutions, repeats=att%repeats, &
                                  residual=merge(att%rnorm, 0.0_dp, an%has_contact), &
-                                 penetration=res%contact%violation, augmentations=res%contact%augmentations, &
-                                 status=merge(STEP_CONVERGED, STEP_UNSETTLED, att%converged), contact=an%has_contact, &
+                                 penetration=res%contact%violation, &
+                                 augmentations=res%contact%augmentations, &
+                                 status=merge(STEP_CONVERGED, STEP_UNSETTLED, att%converged), &
+                                 contact=an%has_contact, &
                                  ideal=res%contact%has_ideal, last=last, written=written, full=full)
-            if (an%has_contact) call energy_commit(m%contact, res%contact, nstep, srec%lambda, res%energy)
+            if (an%has_contact) then
+               call energy_commit(m%contact, res%contact, nstep, srec%lambda, res%energy)
+            end if
             if (an%has_contact) srec%drift = law_drift(m%contact, res%contact)
-            if (an%has_contact) call tangential_drift(m%contact, res%contact, an%tlaw, srec%drift_t, srec%drift_t_pair)
-            if (an%has_contact) call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
+            if (an%has_contact) then
+               call tangential_drift(m%contact, res%contact, an%tlaw, srec%drift_t, &
+                                     srec%drift_t_pair)
+            end if
+            if (an%has_contact) then
+               call sliding_warning(res%contact, an%spacing, nstep, an%warned_closure, res%warnings)
+            end if
             if (an%has_contact) call out%note_reversals(m%contact, pa_old, res%contact%s%pa, srec, &
                                                         res%warnings)
             call finish_step(m, an, res, out, fext, ve_old, srec, status)
             if (.not. status%ok()) exit deck
             cuts = 0
-            if (m%autoinc .and. att%solutions <= m%autoinc_easy .and. .not. res%contact%chatter) then
+            if (m%autoinc .and. att%solutions <= m%autoinc_easy .and. .not. res%contact%chatter) &
+                  then
                step = min(1.0_dp, 2.0_dp*step)
             end if
          end do
@@ -420,9 +457,11 @@ contains
          call pretension_nodal_forces(m, an%pret, res%disp, fsp)
          if (srec%full) call section_forces(m, res%disp, srec%pretension_force, fpm, status)
          if (srec%full) srec%pretension_shortening = [(section_shortening(m%pretensions(k), &
-                                                    an%pret%sections(k)%w, res%disp), k=1, an%pret%n)]
+                                                    an%pret%sections(k)%w, res%disp), k=1, &
+                                                    an%pret%n)]
       end if
-      call check_finite_step(res%body_fields_t, res%contact, an%has_contact, srec%drift, srec%full, status)
+      call check_finite_step(res%body_fields_t, res%contact, an%has_contact, srec%drift, &
+                             srec%full, status)
       if (.not. status%ok()) return
 
       ! invariants (SPEC §7): bodies in equilibrium (where their fields were computed, to
@@ -431,9 +470,11 @@ contains
       imb = IMBALANCE_NOT_COMPUTED
       if (srec%full) then
          an%force_scale = max(an%force_scale, maxval(abs(res%react)))
-         imb = body_imbalance(an%body, an%nbody, fext + res%react - fsp, an%force_scale, m%ntype == NTYPE_AXISYMMETRIC)
+         imb = body_imbalance(an%body, an%nbody, fext + res%react - fsp, an%force_scale, &
+                              m%ntype == NTYPE_AXISYMMETRIC)
       end if
-      call audit_step(m%contact, res%contact, ve_old, imb, imbalance_limit(an%absrow, an%map%id, res%disp, &
+      call audit_step(m%contact, res%contact, ve_old, imb, &
+                      imbalance_limit(an%absrow, an%map%id, res%disp, &
                       an%force_scale), an%has_contact, srec, an%force_scale)
       call note_doubts(res%doubts, srec, stderr)
       call res%append_history(srec)

@@ -98,7 +98,8 @@ contains
       do ie = 1, m%nelem
          nn = m%nnode_e(ie)
          if (.not. valid_ngaus(nn, m%ntype, m%ngaus)) then
-            call errors%add('E-GMSH', 'NGAUS = '//itoa(m%ngaus)//' on the control card is not valid for the '// &
+            call errors%add('E-GMSH', 'NGAUS = '//itoa(m%ngaus)// &
+                            ' on the control card is not valid for the '// &
                             itoa(nn)//'-node elements of the mesh (use 0 for the default rules)', &
                             file=m%mesh_file, line=m%elem_line(ie))
             return
@@ -128,13 +129,15 @@ contains
          nn = m%nnode_e(ie)
          elcod(:, 1:nn) = m%coord(:, m%lnods(1:nn, ie))
          used(m%lnods(1:nn, ie)) = .true.
-         size2 = maxval(elcod(1, 1:nn)) - minval(elcod(1, 1:nn)) + maxval(elcod(2, 1:nn)) - minval(elcod(2, 1:nn))
+         size2 = maxval(elcod(1, 1:nn)) - minval(elcod(1, 1:nn)) + maxval(elcod(2, 1:nn)) - &
+               minval(elcod(2, 1:nn))
          jmin = min_jacobian(nn, elcod(:, 1:nn))
          if (.not. (jmin > 1.0e-12_dp*size2**2)) then
             msg = 'ELEMENTS: element '//itoa(ie)//' is '
             if (jmin < -1.0e-12_dp*size2**2) then
                msg = msg//'inverted or distorted (Jacobian determinant '//rtoa(jmin)// &
-                     ' < 0; corner nodes must be numbered anticlockwise, midside nodes near the middle of their edges)'
+                     ' < 0; corner nodes must be numbered anticlockwise, midside nodes near the &
+                     &middle of their edges)'
             else
                msg = msg//'degenerate (zero area: Jacobian determinant '//rtoa(jmin)//')'
             end if
@@ -150,21 +153,27 @@ contains
              .not. is_pretension_reference(m, ip)) then
             if (allocated(m%mesh_file)) then
                ! an extra node of a MESH block (NODE card): the only nodes of no element there
-               call errors%add('E-UNUSED', 'MESH/NODE: extra node '//itoa(ip)//' is the reference node of no '// &
-                               'rigid body (CONTACT, RIGID): its displacement would be undetermined', &
+               call errors%add('E-UNUSED', 'MESH/NODE: extra node '//itoa(ip)// &
+                               ' is the reference node of no '// &
+                               'rigid body (CONTACT, RIGID): its displacement would be &
+                               &undetermined', &
                                file=m%deck_file, line=m%node_line(ip), col=1)
                cycle
             end if
             call errors%add('E-UNUSED', 'NODES: node '//itoa(ip)//' belongs to no element '// &
-                            '(its displacement would be undetermined; only the reference node of a rigid body '// &
-                            'in CONTACT may be a node of no element)', file=m%deck_file, line=m%node_line(ip), col=1)
+                            '(its displacement would be undetermined; only the reference node of a &
+                            &rigid body '// &
+                            'in CONTACT may be a node of no element)', file=m%deck_file, &
+                            line=m%node_line(ip), col=1)
          end if
       end do
       if (m%ntype == NTYPE_AXISYMMETRIC) then
          do k = 1, size(m%fixes)
             if (.not. is_rigid_reference(m%contact_spec, m%fixes(k)%node)) cycle
-            if (abs(m%fixes(k)%value(1)) > 0.0_dp) call errors%add('E-RIGID', 'RESTRAINTS: node '// &
-                itoa(m%fixes(k)%node)//' is the reference node of a rigid body, which can only move axially '// &
+            if (abs(m%fixes(k)%value(1)) > 0.0_dp) call &
+                  errors%add('E-RIGID', 'RESTRAINTS: node '// &
+                itoa(m%fixes(k)%node)// &
+                ' is the reference node of a rigid body, which can only move axially '// &
                 'in an axisymmetric model: its radial displacement must be 0, found UX = '// &
                 rtoa(m%fixes(k)%value(1)), file=m%deck_file, line=m%fixes(k)%line, col=11)
          end do
@@ -183,9 +192,11 @@ contains
       end do
       call unrestrained_bodies(m, nolinks, nbad, bad_node, what)
       do k = 1, nbad
-         call errors%add('E-UNRESTRAINED', 'RESTRAINTS: unrestrained model: the body containing node '// &
+         call errors%add('E-UNRESTRAINED', &
+                         'RESTRAINTS: unrestrained model: the body containing node '// &
                          itoa(bad_node(k))//' is free to move as a rigid body ('//trim(what(k))// &
-                         '); add restraints that prevent it', file=m%deck_file, line=max(m%restraints_line, 1))
+                         '); add restraints that prevent it', file=m%deck_file, &
+                         line=max(m%restraints_line, 1))
       end do
    end subroutine check_model
 end module model_input

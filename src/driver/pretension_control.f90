@@ -48,7 +48,8 @@ contains
       type(model_t), intent(in) :: m
       type(contact_state_t), intent(inout) :: st
       real(dp), intent(in) :: dlam(:), carry(:)
-      real(dp), intent(inout) :: fext_new(:, :)     !! external forces after the step; + the holding forces
+      real(dp), intent(inout) :: fext_new(:, :)     !! external forces after the
+                                                    !! step; + the holding forces
       logical, intent(in) :: first
       type(attempt_t), intent(inout) :: att
       type(status_t), intent(inout) :: status
@@ -103,8 +104,10 @@ contains
          call try(x, r)
          if (.not. status%ok() .or. done(r)) return
       end do
-      call status%set(STAT_NO_CONVERGENCE, 'the locked pretension section(s) did not keep their opening: '// &
-                      'it changed by '//rtoa(maxval(abs(r)))//' after '//itoa(MAX_LOCK_ITER)//' chord updates')
+      call status%set(STAT_NO_CONVERGENCE, &
+                      'the locked pretension section(s) did not keep their opening: '// &
+                      'it changed by '//rtoa(maxval(abs(r)))//' after '//itoa(MAX_LOCK_ITER)// &
+                      ' chord updates')
    contains
       !> One attempt with the extra forces xx on the locked reference nodes.
       subroutine try(xx, rr)

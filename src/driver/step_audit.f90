@@ -24,7 +24,8 @@ module step_audit
    use kinds, only: dp, stderr
    use errors, only: status_t, STAT_NONFINITE
    use strings, only: itoa, rtoa
-   use records, only: step_record_t, body_fields_t, run_doubts_t, DRIFT_LIMIT, MAX_DOUBT_LINES, STEP_CONVERGED
+   use records, only: step_record_t, body_fields_t, run_doubts_t, DRIFT_LIMIT, MAX_DOUBT_LINES, &
+         STEP_CONVERGED
    use contact_types, only: contact_def_t, LAW_ROUGH
    use contact_laws, only: normal_pressure
    use contact_algorithm, only: contact_state_t, check_invariants, frozen_pairs, MAX_SWITCH
@@ -32,8 +33,10 @@ module step_audit
    use roundoff, only: resolvable_limit
    implicit none
    private
-   public :: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, pair_list
-   public :: sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, imbalance_limit
+   public :: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
+         pair_list
+   public :: sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, &
+         imbalance_limit
 
    !> step%imbalance of a step whose body fields were not computed (its
    !! results are not written: OPTIONS RESULTS), so its equilibrium was not checked.
@@ -49,14 +52,18 @@ module step_audit
       integer :: nhist = 0                       !! steps held
       integer, allocatable :: iterations(:)      !! solves per increment
       integer, allocatable :: repeats(:)         !! repeats (mode changes) per increment
-      real(dp), allocatable :: residual(:)       !! relative out-of-balance force after each increment
-      real(dp), allocatable :: drift(:)          !! largest departure of F_n from its curve, relative
-      real(dp), allocatable :: drift_t(:)        !! largest departure of F_T from the tangential law, relative
+      real(dp), allocatable :: residual(:)       !! relative out-of-balance
+                                                 !! force after each increment
+      real(dp), allocatable :: drift(:)          !! largest departure of F_n
+                                                 !! from its curve, relative
+      real(dp), allocatable :: drift_t(:)        !! largest departure of F_T from
+                                                 !! the tangential law, relative
       real(dp), allocatable :: imbalance(:)      !! largest force imbalance of a body, relative
                                                  !! (IMBALANCE_NOT_COMPUTED: a step not written)
       real(dp), allocatable :: imbalance_limit(:) !! the imbalance beyond which the step is doubtful
       integer, allocatable :: violations(:)      !! invariant violations per increment (SPEC §7)
-      real(dp), allocatable :: penetration(:)    !! ideal contact: largest |u_n| (closed) or stick slip at the end
+      real(dp), allocatable :: penetration(:)    !! ideal contact: largest |u_n| (closed)
+                                                 !! or stick slip at the end
       integer, allocatable :: augmentations(:)   !! ideal contact: multiplier updates per increment
    contains
       procedure :: append_history
@@ -76,7 +83,9 @@ contains
       call check_nodal(du, 'displacement increment', status)
       if (.not. status%ok() .or. .not. has_contact) return
       if (allocated(st%fn)) call check_pairs(st%fn, 'normal spring force', status)
-      if (allocated(st%ft) .and. status%ok()) call check_pairs(st%ft, 'tangential spring force', status)
+      if (allocated(st%ft) .and. status%ok()) then
+         call check_pairs(st%ft, 'tangential spring force', status)
+      end if
    end subroutine check_finite_attempt
 
    !> Stop (STAT_NONFINITE) if a spring stiffness of the current modes is not
@@ -99,14 +108,16 @@ contains
       type(contact_state_t), intent(in) :: st
       logical, intent(in) :: has_contact
       real(dp), intent(in) :: drift                 !! the step's law drift (law_drift)
-      logical, intent(in) :: full                   !! the body fields were computed (else: contact only)
+      logical, intent(in) :: full                   !! the body fields were computed
+                                                    !! (else: contact only)
       type(status_t), intent(inout) :: status
       integer :: k
       if (full) call check_nodal(body%disp, 'displacement', status)
       if (status%ok() .and. full) call check_nodal(body%react, 'reaction', status)
       if (status%ok() .and. full .and. .not. all(ieee_is_finite(body%sig_gp))) then
          k = first_bad(reshape(body%sig_gp, [size(body%sig_gp)]))
-         call status%set(STAT_NONFINITE, 'non-finite stress ('//text(body%sig_gp(mod(k - 1, 4) + 1, (k - 1)/4 + 1))// &
+         call status%set(STAT_NONFINITE, 'non-finite stress ('// &
+                         text(body%sig_gp(mod(k - 1, 4) + 1, (k - 1)/4 + 1))// &
                          ') at Gauss point '//itoa((k - 1)/4 + 1)//'; '//cause())
       end if
       if (.not. status%ok() .or. .not. has_contact) return
@@ -114,8 +125,10 @@ contains
       if (status%ok()) call check_pairs(st%s%ft, 'tangential spring force', status)
       if (status%ok()) call check_pairs(st%s%un, 'closure', status)
       if (status%ok()) call check_pairs(st%s%ut, 'tangential displacement', status)
-      if (status%ok() .and. .not. ieee_is_finite(drift)) call status%set(STAT_NONFINITE, 'the interface law '// &
-         'overflows at the closures of the step (its pressure at a closure is not finite); '//cause())
+      if (status%ok() .and. .not. ieee_is_finite(drift)) call &
+            status%set(STAT_NONFINITE, 'the interface law '// &
+         'overflows at the closures of the step (its pressure at a closure is not finite); '// &
+         cause())
    end subroutine check_finite_step
 
    !> The invariants, frozen states and drift of an accepted step: sets
@@ -126,11 +139,14 @@ contains
       type(contact_def_t), intent(in) :: cdef
       type(contact_state_t), intent(in) :: st       !! committed states of the step
       real(dp), intent(in) :: ve_old(:)             !! effective slip before the step
-      real(dp), intent(in) :: imbalance             !! largest body imbalance, relative (body_imbalance)
-      real(dp), intent(in) :: limit                 !! the imbalance beyond which it is doubtful (imbalance_limit)
+      real(dp), intent(in) :: imbalance             !! largest body imbalance,
+                                                    !! relative (body_imbalance)
+      real(dp), intent(in) :: limit                 !! the imbalance beyond which it
+                                                    !! is doubtful (imbalance_limit)
       logical, intent(in) :: has_contact
       type(step_record_t), intent(inout) :: step
-      real(dp), intent(in), optional :: fscale      !! the run's force scale (largest nodal force so far)
+      real(dp), intent(in), optional :: fscale      !! the run's force scale (largest
+                                                    !! nodal force so far)
       integer :: nbad
       integer, allocatable :: bad(:), frozen(:)
       character(len=:), allocatable :: imsg, d
@@ -146,7 +162,8 @@ contains
       if (imbalance > limit) then
          nbad = nbad + 1
          if (len(imsg) > 0) imsg = imsg//'; '
-         imsg = imsg//'a body is out of equilibrium by '//rtoa(imbalance)//' of the load (limit '//rtoa(limit)//')'
+         imsg = imsg//'a body is out of equilibrium by '//rtoa(imbalance)// &
+               ' of the load (limit '//rtoa(limit)//')'
       end if
       step%imbalance = imbalance
       step%imbalance_limit = limit
@@ -154,16 +171,20 @@ contains
       step%frozen = size(frozen)
       ! frozen modes end the iteration without meeting its criterion
       step%converged = step%status == STEP_CONVERGED .and. step%frozen == 0
-      if (size(frozen) > 0) d = 'contact states frozen after '//itoa(MAX_SWITCH)//' mode changes (chatter) at '// &
+      if (size(frozen) > 0) d = 'contact states frozen after '//itoa(MAX_SWITCH)// &
+            ' mode changes (chatter) at '// &
                                 itoa(size(frozen))//' pair(s):'//pair_list(frozen)
       if (has_contact .and. step%drift > DRIFT_LIMIT) then
          if (len(d) > 0) d = d//'; '
-         d = d//'normal spring forces up to '//percent(step%drift)//' % off the interface law (limit '// &
-             itoa(nint(100.0_dp*DRIFT_LIMIT))//' %; the most at pair '//itoa(worst_drift_pair(cdef, st))//')'
+         d = d//'normal spring forces up to '//percent(step%drift)// &
+               ' % off the interface law (limit '// &
+             itoa(nint(100.0_dp*DRIFT_LIMIT))//' %; the most at pair '// &
+             itoa(worst_drift_pair(cdef, st))//')'
       end if
       if (has_contact .and. step%drift_t > DRIFT_LIMIT) then
          if (len(d) > 0) d = d//'; '
-         d = d//'tangential spring forces up to '//percent(step%drift_t)//' % of mu F_n off the tangential law (limit '// &
+         d = d//'tangential spring forces up to '//percent(step%drift_t)// &
+               ' % of mu F_n off the tangential law (limit '// &
              itoa(nint(100.0_dp*DRIFT_LIMIT))//' %; the most at pair '//itoa(step%drift_t_pair)//')'
       end if
       if (nbad > 0) then
@@ -185,12 +206,15 @@ contains
       doubts%steps = doubts%steps + 1
       if (doubts%first == 0) doubts%first = step%step
       if (step%frozen > 0) doubts%frozen = doubts%frozen + 1
-      if (step%contact .and. max(step%drift, step%drift_t) > DRIFT_LIMIT) doubts%drift = doubts%drift + 1
+      if (step%contact .and. max(step%drift, step%drift_t) > DRIFT_LIMIT) then
+         doubts%drift = doubts%drift + 1
+      end if
       if (step%violations > 0) doubts%violations = doubts%violations + 1
       if (doubts%steps <= MAX_DOUBT_LINES) then
          if (len(doubts%details) > 0) doubts%details = doubts%details//new_line('a')
          doubts%details = doubts%details//'increment '//itoa(step%step)//': '//step%doubts
-         write (u, '(a)') 'kontakt2d: warning: increment '//itoa(step%step)//' is doubtful: '//step%doubts
+         write (u, '(a)') 'kontakt2d: warning: increment '//itoa(step%step)//' is doubtful: '// &
+               step%doubts
       end if
    end subroutine note_doubts
 
@@ -227,7 +251,8 @@ contains
    !! breaks that).
    subroutine sliding_warning(st, spacing, step, warned, nwarn)
       type(contact_state_t), intent(in) :: st       !! committed states
-      real(dp), intent(in) :: spacing(:)            !! (npair) distance to the nearest other pair [length]
+      real(dp), intent(in) :: spacing(:)            !! (npair) distance to the nearest
+                                                    !! other pair [length]
       integer, intent(in) :: step                   !! the step
       logical, intent(inout) :: warned              !! the warning was given (once per run)
       integer, intent(inout) :: nwarn               !! warnings of the run
@@ -257,7 +282,8 @@ contains
       do j = 1, size(st%s)
          associate (s => st%s(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
             if (.not. s%closed .or. ifc%law /= LAW_ROUGH) cycle
-            d = abs(s%fn - pr%area*normal_pressure(s%un, ifc%cn, ifc%m, ifc%cn2, ifc%m2, s%on_unloading, s%ua, s%pa))
+            d = abs(s%fn - pr%area*normal_pressure(s%un, ifc%cn, ifc%m, ifc%cn2, ifc%m2, &
+                                                   s%on_unloading, s%ua, s%pa))
             if (d > dmax) then
                dmax = d
                jw = j
@@ -274,8 +300,10 @@ contains
       integer :: k
       if (all(ieee_is_finite(v))) return
       k = first_bad(reshape(v, [size(v)]))
-      call status%set(STAT_NONFINITE, 'non-finite '//what//' ('//text(v(mod(k - 1, 2) + 1, (k - 1)/2 + 1))// &
-                      ') at node '//itoa((k - 1)/2 + 1)//', dof '//merge('x', 'y', mod(k - 1, 2) == 0)//'; '//cause())
+      call status%set(STAT_NONFINITE, 'non-finite '//what//' ('// &
+                      text(v(mod(k - 1, 2) + 1, (k - 1)/2 + 1))// &
+                      ') at node '//itoa((k - 1)/2 + 1)//', dof '// &
+                      merge('x', 'y', mod(k - 1, 2) == 0)//'; '//cause())
    end subroutine check_nodal
 
    !> A per-pair quantity: name the first pair with a non-finite value.
@@ -286,7 +314,8 @@ contains
       integer :: k
       if (all(ieee_is_finite(v))) return
       k = first_bad(v)
-      call status%set(STAT_NONFINITE, 'non-finite '//what//' ('//text(v(k))//') at contact pair '//itoa(k)// &
+      call status%set(STAT_NONFINITE, 'non-finite '//what//' ('//text(v(k))// &
+                      ') at contact pair '//itoa(k)// &
                       '; '//cause())
    end subroutine check_pairs
 
@@ -384,7 +413,8 @@ contains
 
    pure function cause() result(s)
       character(len=:), allocatable :: s
-      s = 'a number of the model is out of the range of double precision (a load factor, a modulus, '// &
+      s = 'a number of the model is out of the range of double precision (a load factor, a &
+      &modulus, '// &
           'a roughness constant c_n^m or an exponent): check the deck''s values and units'
    end function cause
 

@@ -83,7 +83,8 @@ contains
       integer, intent(in) :: nnode                 !! nodes per element
       real(dp), intent(in) :: shape(nnode)         !! shape functions at the point
       real(dp), intent(in) :: cartd(2, nnode)      !! Cartesian derivatives at the point
-      real(dp), intent(in) :: radius               !! r at the point (used only for ntype 3) [length]
+      real(dp), intent(in) :: radius               !! r at the point (used only
+                                                   !! for ntype 3) [length]
       real(dp), intent(out) :: bmatx(4, 2*nnode)   !! B matrix [1/length]
       integer :: inode, mgash, ngash
 

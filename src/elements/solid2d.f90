@@ -53,14 +53,16 @@ contains
    !! Ref: Hinton & Owen (1977), STIFFP; Zienkiewicz & Taylor, vol. 1
    !!      (element stiffness K = int B^T D B dV).
    pure subroutine element_stiffness(ntype, nnode, elcod, young, poiss, thick, ngaus, estif, ierr)
-      integer, intent(in) :: ntype                     !! 1 plane stress, 2 plane strain, 3 axisymmetric
+      integer, intent(in) :: ntype                     !! 1 plane stress, 2 plane
+                                                       !! strain, 3 axisymmetric
       integer, intent(in) :: nnode                     !! nodes per element: 3, 4, 8 or 9
       real(dp), intent(in) :: elcod(2, nnode)          !! nodal coordinates [length]
       real(dp), intent(in) :: young                    !! Young's modulus [stress]
       real(dp), intent(in) :: poiss                    !! Poisson's ratio [-]
       real(dp), intent(in) :: thick                    !! thickness, plane problems [length]
       integer, intent(in) :: ngaus                     !! Gauss rule, 0 = default
-      real(dp), intent(out) :: estif(:, :)             !! stiffness, shape (2*nnode, 2*nnode) [force/length]
+      real(dp), intent(out) :: estif(:, :)             !! stiffness, shape (2*nnode,
+                                                       !! 2*nnode) [force/length]
       integer, intent(out) :: ierr                     !! status, see module header
       real(dp) :: posgp(2, max_gp), weigp(max_gp), dmatx(4, 4)
       real(dp) :: shape(nnode), cartd(2, nnode), bmatx(4, 2*nnode), dbmat(4, 2*nnode)
@@ -115,17 +117,21 @@ contains
    !!      Taylor, vol. 1 (recovery from the Gauss points).
    pure subroutine element_stresses(ntype, nnode, elcod, young, poiss, ngaus, eldis, &
                                     ngp, xygp, sigma_gp, sigma_nd, ierr)
-      integer, intent(in) :: ntype                  !! 1 plane stress, 2 plane strain, 3 axisymmetric
+      integer, intent(in) :: ntype                  !! 1 plane stress, 2 plane
+                                                    !! strain, 3 axisymmetric
       integer, intent(in) :: nnode                  !! nodes per element: 3, 4, 8 or 9
       real(dp), intent(in) :: elcod(2, nnode)       !! nodal coordinates [length]
       real(dp), intent(in) :: young                 !! Young's modulus [stress]
       real(dp), intent(in) :: poiss                 !! Poisson's ratio [-]
       integer, intent(in) :: ngaus                  !! Gauss rule, 0 = default
-      real(dp), intent(in) :: eldis(2*nnode)        !! nodal displacements (u1, v1, u2, ...) [length]
+      real(dp), intent(in) :: eldis(2*nnode)        !! nodal displacements (u1,
+                                                    !! v1, u2, ...) [length]
       integer, intent(out) :: ngp                   !! number of Gauss points
-      real(dp), intent(out) :: xygp(2, max_gp)      !! global coordinates of the Gauss points [length]
+      real(dp), intent(out) :: xygp(2, max_gp)      !! global coordinates of the
+                                                    !! Gauss points [length]
       real(dp), intent(out) :: sigma_gp(4, max_gp)  !! (xx, yy, xy, zz) at the Gauss points [stress]
-      real(dp), intent(out) :: sigma_nd(4, nnode)   !! (xx, yy, xy, zz) extrapolated to the nodes [stress]
+      real(dp), intent(out) :: sigma_nd(4, nnode)   !! (xx, yy, xy, zz) extrapolated
+                                                    !! to the nodes [stress]
       integer, intent(out) :: ierr                  !! status, see module header
       real(dp) :: posgp(2, max_gp), weigp(max_gp), dmatx(4, 4)
       real(dp) :: shape(nnode), cartd(2, nnode), bmatx(4, 2*nnode), dvolu
@@ -218,8 +224,10 @@ contains
       integer, intent(in) :: ntype             !! 1 plane stress, 2 plane strain, 3 axisymmetric
       integer, intent(in) :: nn                !! nodes on the edge: 2 or 3
       real(dp), intent(in) :: edcod(2, nn)     !! edge node coordinates, (start, end, mid) [length]
-      real(dp), intent(in) :: pn(nn)           !! normal pressure at the edge nodes, + compressive [stress]
-      real(dp), intent(in) :: pt(nn)           !! tangential traction at the edge nodes, + start->end [stress]
+      real(dp), intent(in) :: pn(nn)           !! normal pressure at the edge
+                                               !! nodes, + compressive [stress]
+      real(dp), intent(in) :: pt(nn)           !! tangential traction at the edge
+                                               !! nodes, + start->end [stress]
       real(dp), intent(in) :: thick            !! thickness, plane problems [length]
       real(dp), intent(out) :: eforce(2*nn)    !! nodal forces (fx1, fy1, ...) [force]
       real(dp) :: posgp(edge_ngaus), weigp(edge_ngaus)

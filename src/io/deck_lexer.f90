@@ -8,7 +8,8 @@
 !! which validate the text themselves instead of trusting a Fortran `read`
 !! (which would silently accept "1 2" as 12 or stop the program on "abc").
 module deck_lexer
-   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
+   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, &
+         ieee_set_halting_mode, &
                                             ieee_set_flag
    use kinds, only: dp
    use errors, only: error_list_t, printable
@@ -22,7 +23,8 @@ module deck_lexer
    !! coordinate differences (lengths, the element size squared), which must stay representable.
    real(dp), parameter :: MAX_COORDINATE = 0.25_dp*sqrt(huge(1.0_dp))
 
-   !> Largest deck read (bytes): far above any mesh a fixed-format deck holds (5-digit node numbers).
+   !> Largest deck read (bytes): far above any mesh a fixed-format deck holds (5-digit node
+   !> numbers).
    integer, parameter :: MAX_DECK_BYTES = 256*2**20
 
    !> One significant line of the deck.
@@ -78,7 +80,8 @@ contains
       ok = .false.
       inquire (file=path, exist=exists)
       if (.not. exists) then
-         call this%errors%add('E-FILE', 'cannot open deck: file "'//path//'" does not exist', file=path)
+         call this%errors%add('E-FILE', 'cannot open deck: file "'//path//'" does not exist', &
+                              file=path)
          return
       end if
       open (newunit=u, file=path, access='stream', form='unformatted', status='old', &
@@ -105,11 +108,14 @@ contains
             end if
          end do
          if (nul <= fsize .and. nul <= MAX_DECK_BYTES) then
-            call this%errors%add('E-FILE', 'not a text deck: a NUL byte (binary data) at byte '//itoa(nul), &
+            call this%errors%add('E-FILE', &
+                                 'not a text deck: a NUL byte (binary data) at byte '//itoa(nul), &
                                  file=path, line=nl, col=nul - start + 1)
          else
-            call this%errors%add('E-FILE', 'the deck is larger than '//itoa(MAX_DECK_BYTES/2**20)// &
-                                 ' MB: not a deck this program reads', file=path, line=nl, col=nul - start + 1)
+            call this%errors%add('E-FILE', 'the deck is larger than '// &
+                                 itoa(MAX_DECK_BYTES/2**20)// &
+                                 ' MB: not a deck this program reads', file=path, line=nl, &
+                                 col=nul - start + 1)
          end if
          return
       end if
@@ -329,14 +335,16 @@ contains
             val = default
          else
             call this%error_at(ic, c1, 'E-MISSING', card//': field '//field//' (columns '// &
-                               itoa(c1)//'-'//itoa(c2)//') expected an integer, found a blank field')
+                               itoa(c1)//'-'//itoa(c2)// &
+                               ') expected an integer, found a blank field')
             ok = .false.
          end if
          return
       end if
       if (.not. is_integer_text(f)) then
          call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
-                            itoa(c1)//'-'//itoa(c2)//') expected an integer, found "'//shown(f)//'"')
+                            itoa(c1)//'-'//itoa(c2)//') expected an integer, found "'// &
+                            shown(f)//'"')
          ok = .false.
          return
       end if
@@ -367,14 +375,16 @@ contains
             val = default
          else
             call this%error_at(ic, c1, 'E-MISSING', card//': field '//field//' (columns '// &
-                               itoa(c1)//'-'//itoa(c2)//') expected a real number, found a blank field')
+                               itoa(c1)//'-'//itoa(c2)// &
+                               ') expected a real number, found a blank field')
             ok = .false.
          end if
          return
       end if
       if (.not. is_real_text(f)) then
          call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
-                            itoa(c1)//'-'//itoa(c2)//') expected a real number, found "'//shown(f)//'"')
+                            itoa(c1)//'-'//itoa(c2)//') expected a real number, found "'// &
+                            shown(f)//'"')
          ok = .false.
          return
       end if
@@ -427,7 +437,8 @@ contains
       if (.not. ok) return
       if (abs(val) <= sqrt(huge(val))) return
       call this%error_at(ic, c1, 'E-RANGE', card//': '//field//' = '//rtoa(val)//' is beyond '// &
-                         rtoa(sqrt(huge(val)))//' in magnitude: the analysis multiplies it by stiffnesses')
+                         rtoa(sqrt(huge(val)))// &
+                         ' in magnitude: the analysis multiplies it by stiffnesses')
       ok = .false.
    end subroutine deck_check_magnitude
 

@@ -17,7 +17,8 @@ module group_cards
    use kinds, only: dp
    use strings, only: itoa, rtoa
    use deck_lexer, only: deck_t, shown
-   use model, only: model_t, MAX_CASE, restraint_t, point_load_t, edge_load_t, find_node_set, find_edge_set
+   use model, only: model_t, MAX_CASE, restraint_t, point_load_t, edge_load_t, find_node_set, &
+         find_edge_set
    use topology, only: element_edge_nodes
    implicit none
    private
@@ -44,13 +45,15 @@ contains
       if (trim(adjustl(d%field_text(ic, 1, 10))) /= 'GROUP' .and. &
           trim(adjustl(d%field_text(ic, 1, 10))) /= 'group' .and. &
           trim(adjustl(d%field_text(ic, 1, 10))) /= 'Group') then
-         call d%error_at(ic, 1, 'E-CARD', card//': expected the word GROUP in columns 1-10, found "'// &
+         call d%error_at(ic, 1, 'E-CARD', &
+                         card//': expected the word GROUP in columns 1-10, found "'// &
                          trim(d%field_text(ic, 1, 10))//'"')
          name = ''
          return
       end if
       name = trim(adjustl(d%field_text(ic, 11, 30)))
-      if (len(name) == 0) call d%error_at(ic, 11, 'E-MISSING', card//': GROUP expected a set name in '// &
+      if (len(name) == 0) call d%error_at(ic, 11, 'E-MISSING', &
+                                          card//': GROUP expected a set name in '// &
                                           'columns 11-30, found a blank field')
    end function group_name
 
@@ -76,7 +79,9 @@ contains
             end do
          end if
       end if
-      if (len(s) == 0) s = 'none (named sets come from the physical curves and points of a MESH block)'
+      if (len(s) == 0) then
+         s = 'none (named sets come from the physical curves and points of a MESH block)'
+      end if
    end function set_names
 
    subroutine check_tail(d, ic, col, card, expected, ok)
@@ -87,7 +92,8 @@ contains
       character(len=:), allocatable :: tail
       tail = trim(adjustl(d%field_text(ic, col, 100000)))
       if (len(tail) > 0) then
-         call d%error_at(ic, col, 'E-EXTRA', card//': expected '//expected//', found more: "'//shown(tail)//'"')
+         call d%error_at(ic, col, 'E-EXTRA', card//': expected '//expected//', found more: "'// &
+                         shown(tail)//'"')
          ok = .false.
       end if
    end subroutine check_tail
@@ -118,12 +124,14 @@ contains
       if (.not. ok) return
       ks = find_node_set(m, name)
       if (ks == 0) then
-         call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//name//'" is no node set of the mesh; known: '// &
+         call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//name// &
+                         '" is no node set of the mesh; known: '// &
                          set_names(m, .false.))
          return
       end if
       if (all(code /= [1, 10, 11])) then
-         call d%error_at(ic, 31, 'E-CODE', card//': CODE (columns 31-35) expected 10 (x fixed), '// &
+         call d%error_at(ic, 31, 'E-CODE', &
+                         card//': CODE (columns 31-35) expected 10 (x fixed), '// &
                          '01 (y fixed) or 11 (both), found '//itoa(code))
          return
       end if
@@ -134,12 +142,14 @@ contains
          return
       end if
       if (code < 10 .and. abs(ux) > 0.0_dp) then
-         call d%error_at(ic, 36, 'E-CODE', card//': UX = '//rtoa(ux)//' is prescribed but CODE '//itoa(code)// &
+         call d%error_at(ic, 36, 'E-CODE', card//': UX = '//rtoa(ux)// &
+                         ' is prescribed but CODE '//itoa(code)// &
                          ' leaves x free')
          return
       end if
       if (mod(code, 10) == 0 .and. abs(uy) > 0.0_dp) then
-         call d%error_at(ic, 46, 'E-CODE', card//': UY = '//rtoa(uy)//' is prescribed but CODE '//itoa(code)// &
+         call d%error_at(ic, 46, 'E-CODE', card//': UY = '//rtoa(uy)// &
+                         ' is prescribed but CODE '//itoa(code)// &
                          ' leaves y free')
          return
       end if
@@ -147,7 +157,8 @@ contains
          do k = 1, size(nodes)
             if (n >= size(list)) list = [list, list]
             n = n + 1
-            list(n) = restraint_t(node=nodes(k), fixed=[code >= 10, mod(code, 10) == 1], value=[ux, uy], &
+            list(n) = restraint_t(node=nodes(k), fixed=[code >= 10, mod(code, 10) == 1], &
+                                  value=[ux, uy], &
                                   icase=icase, line=d%cards(ic)%line)
          end do
       end associate
@@ -170,10 +181,14 @@ contains
             j = first(dof, list(k)%node)
             if (j == 0) then
                first(dof, list(k)%node) = k
-            else if (abs(list(j)%value(dof) - list(k)%value(dof)) > 0.0_dp .or. list(j)%icase /= list(k)%icase) then
-               call d%errors%add('E-DUPLICATE', 'RESTRAINTS: node '//itoa(list(k)%node)//' gets two different '// &
-                                 'prescribed '//merge('x', 'y', dof == 1)//' displacements (lines '// &
-                                 itoa(list(j)%line)//' and '//itoa(list(k)%line)//')', file=d%file, &
+            else if (abs(list(j)%value(dof) - list(k)%value(dof)) > 0.0_dp .or. list(j)%icase /= &
+                     list(k)%icase) then
+               call d%errors%add('E-DUPLICATE', 'RESTRAINTS: node '//itoa(list(k)%node)// &
+                                 ' gets two different '// &
+                                 'prescribed '//merge('x', 'y', dof == 1)// &
+                                 ' displacements (lines '// &
+                                 itoa(list(j)%line)//' and '//itoa(list(k)%line)//')', &
+                                 file=d%file, &
                                  line=list(k)%line)
             end if
          end do
@@ -256,17 +271,20 @@ contains
       call d%get_real(ic, 31, 40, card, names(1), v(1), ok, default=0.0_dp)
       call d%get_real(ic, 41, 50, card, names(2), v(2), ok, default=0.0_dp)
       call d%get_int(ic, 51, 55, card, 'CASE', icase, ok, default=1)
-      call check_tail(d, ic, 56, card, 'GROUP, NAME, '//names(1)//', '//names(2)//', CASE in columns 1-55', ok)
+      call check_tail(d, ic, 56, card, 'GROUP, NAME, '//names(1)//', '//names(2)// &
+                      ', CASE in columns 1-55', ok)
       call d%check_magnitude(ic, 31, card, names(1), v(1), ok)
       call d%check_magnitude(ic, 41, card, names(2), v(2), ok)
       if (.not. ok) return
       if (edges) then
          ks = find_edge_set(m, name)
-         if (ks == 0) call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//name//'" is no edge set (physical '// &
+         if (ks == 0) call d%error_at(ic, 11, 'E-GROUP', &
+                                      card//': GROUP "'//name//'" is no edge set (physical '// &
                                       'curve) of the mesh; known: '//set_names(m, .true.))
       else
          ks = find_node_set(m, name)
-         if (ks == 0) call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//name//'" is no node set of the mesh; '// &
+         if (ks == 0) call d%error_at(ic, 11, 'E-GROUP', &
+                                      card//': GROUP "'//name//'" is no node set of the mesh; '// &
                                       'known: '//set_names(m, .false.))
       end if
       if (ks == 0) return

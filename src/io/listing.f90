@@ -15,10 +15,12 @@ module listing
    use strings, only: itoa, rtoa
    use version, only: K2D_VERSION
    use model, only: model_t, ntype_name
-   use contact_types, only: contact_def_t, units_name, LAW_ROUGH, UNITS_KGF_UM, UNITS_MODEL, MATCH_SEGMENT, &
+   use contact_types, only: contact_def_t, units_name, LAW_ROUGH, UNITS_KGF_UM, UNITS_MODEL, &
+         MATCH_SEGMENT, &
                             KGF_PER_NMM2
    use run_plan, only: plan_summary
-   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, NS_OPEN, &
+   use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, &
+         NS_OPEN, &
                       NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP, MAX_DOUBT_LINES
    use records, only: numbering_report_t
    use renumber, only: RENUMBER_NONE
@@ -56,7 +58,9 @@ contains
       nbytes = -1
       inquire (file=path, size=nbytes)
       if (.not. status%ok()) return
-      if (ios /= 0 .or. ios2 /= 0 .or. nbytes < pos - 1) call status%set(STAT_IO, shortfall(path, nbytes, pos - 1))
+      if (ios /= 0 .or. ios2 /= 0 .or. nbytes < pos - 1) then
+         call status%set(STAT_IO, shortfall(path, nbytes, pos - 1))
+      end if
    end subroutine close_listing
 
    !> Has all of the listing written so far reached the disk?  Flushed, then
@@ -74,7 +78,9 @@ contains
       inquire (unit=u, pos=pos, iostat=ios)
       nbytes = -1
       inquire (file=path, size=nbytes)
-      if (ios /= 0 .or. ios2 /= 0 .or. nbytes < pos - 1) call status%set(STAT_IO, shortfall(path, nbytes, pos - 1))
+      if (ios /= 0 .or. ios2 /= 0 .or. nbytes < pos - 1) then
+         call status%set(STAT_IO, shortfall(path, nbytes, pos - 1))
+      end if
    end subroutine check_listing
 
    !> The message of a listing that did not reach the disk whole.
@@ -99,7 +105,8 @@ contains
       write (u, '(a)') ' Analysis     : '//ntype_name(m%ntype)
       write (u, '(a,i0,a,i0,a,i0)') ' Nodes        : ', m%npoin, '   elements: ', m%nelem, &
          '   materials: ', m%nmats
-      write (u, '(a,i0,a,i0,a,i0)') ' Equations    : ', info%neq, '   restrained dofs: ', info%nres, &
+      write (u, '(a,i0,a,i0,a,i0)') ' Equations    : ', info%neq, '   restrained dofs: ', &
+            info%nres, &
          '   load cases: ', m%ncase
       write (u, '(a,i0)') ' Increments   : ', m%nincs
       write (u, '(a)') ' Solver       : '//info%solver
@@ -119,26 +126,32 @@ contains
       if (.not. allocated(c%ifaces)) return
       do i = 1, size(c%ifaces)
          associate (f => c%ifaces(i))
-            if (f%matching == MATCH_SEGMENT .and. f%sides_swapped) write (u, '(a)') ' Interface '//itoa(i)// &
-               ': MATCHING SEGMENT with the sides swapped: the nodes of SURFACE B are projected on the edges '// &
+            if (f%matching == MATCH_SEGMENT .and. f%sides_swapped) write (u, '(a)') &
+                  ' Interface '//itoa(i)// &
+               ': MATCHING SEGMENT with the sides swapped: the nodes of SURFACE B are projected on &
+               &the edges '// &
                'of SURFACE A (the deck''s A is the coarser side)'
             if (f%law /= LAW_ROUGH) cycle
             line = ' Interface '//itoa(i)//': UNITS '//units_name(f%units)
             if (f%units /= UNITS_MODEL) line = line//', model in mm and N/mm2'
             write (u, '(a)') line
-            line = '   as given   : CN '//rtoa(f%cn_in)//'  M '//rtoa(f%m_in)//'  CN2 '//rtoa(f%cn2_in)// &
+            line = '   as given   : CN '//rtoa(f%cn_in)//'  M '//rtoa(f%m_in)//'  CN2 '// &
+                  rtoa(f%cn2_in)// &
                    '  M2 '//rtoa(f%m2_in)//'  S '//rtoa(f%s_in)
             if (f%r_given) line = line//'  R '//rtoa(f%r_in)
             write (u, '(a)') line
             if (.not. allocated(f%r_t)) cycle
             if (size(f%r_t) == 0) cycle
-            line = '   model units: CN '//rtoa(f%cn)//'  CN2 '//rtoa(f%cn2)//'  R '//rtoa(minval(f%r_t))
+            line = '   model units: CN '//rtoa(f%cn)//'  CN2 '//rtoa(f%cn2)//'  R '// &
+                  rtoa(minval(f%r_t))
             if (maxval(f%r_t) > minval(f%r_t)) line = line//' .. '//rtoa(maxval(f%r_t))
             line = line//'  (u = CN p^M, length and stress of the model'
             if (f%units == UNITS_KGF_UM) line = line//'; 1 N/mm2 = 10.19716 kgf/cm2'
             write (u, '(a)') line//')'
-            if (f%p_reversal_max < huge(1.0_dp)) write (u, '(a)') '   unloading branch admissible (u_res >= 0, '// &
-               'at least as stiff as loading) for reversal pressures up to p* = '//pressure_text(f%p_reversal_max, f%units)// &
+            if (f%p_reversal_max < huge(1.0_dp)) write (u, '(a)') &
+                  '   unloading branch admissible (u_res >= 0, '// &
+               'at least as stiff as loading) for reversal pressures up to p* = '// &
+               pressure_text(f%p_reversal_max, f%units)// &
                '; beyond, u_res is taken as max(u_res, 0)'
          end associate
       end do
@@ -159,7 +172,9 @@ contains
       end if
       write (u, '(a)') ' Contact      : '//itoa(info%npair)//' pairs, '//scheme
       if (len(info%system) > 0) write (u, '(a)') ' '//info%system
-      if (info%autoinc) write (u, '(a)') ' Increments   : automatic (cut on failure or chatter, smallest step '// &
+      if (info%autoinc) write (u, &
+                               '(a)') ' Increments   : automatic (cut on failure or chatter, &
+                               &smallest step '// &
          rtoa(info%autoinc_min)//' of a deck increment)'
    end subroutine list_method
 
@@ -222,7 +237,8 @@ contains
          write (u, '(/a)') ' POINT LOADS'
          write (u, '(a)') '   NODE              FX              FY  CASE'
          do k = 1, size(m%point_loads)
-            write (u, '(i7, 2es16.7, i6)') m%point_loads(k)%node, m%point_loads(k)%force, m%point_loads(k)%icase
+            write (u, '(i7, 2es16.7, i6)') m%point_loads(k)%node, m%point_loads(k)%force, &
+                  m%point_loads(k)%icase
          end do
       end if
       if (size(m%edge_loads) > 0) then
@@ -230,7 +246,8 @@ contains
          do k = 1, size(m%edge_loads)
             associate (e => m%edge_loads(k))
                ! e%nn (2 or 3) node fields: a fixed count would read the text after them as one
-               write (u, '(a,i0,a,'//itoa(e%nn)//'i7,a,i0)') '   element ', e%ielem, '  nodes', e%nodes(1:e%nn), &
+               write (u, '(a,i0,a,'//itoa(e%nn)//'i7,a,i0)') '   element ', e%ielem, '  nodes', &
+                     e%nodes(1:e%nn), &
                   '  case ', e%icase
                write (u, '(a,3es14.5)') '      pressure  ', e%pn(1:e%nn)
                write (u, '(a,3es14.5)') '      tangential', e%pt(1:e%nn)
@@ -258,9 +275,12 @@ contains
       type(step_record_t), intent(in) :: step
       type(body_fields_t), intent(in) :: body
       type(contact_fields_t), intent(in), optional :: contact   !! listed when step%contact
-      character(len=*), intent(in), optional :: path            !! the listing's file: with `status`, the
-      type(status_t), intent(inout), optional :: status         !! listing is then checked (check_listing)
-      logical, intent(in), optional :: short                    !! a SHORT listing (see SHORT_TABLE_MAX_NODES)
+      character(len=*), intent(in), optional :: path            !! the listing's file:
+                                                                !! with `status`, the
+      type(status_t), intent(inout), optional :: status         !! listing is then checked
+                                                                !! (check_listing)
+      logical, intent(in), optional :: short                    !! a SHORT listing (see
+                                                                !! SHORT_TABLE_MAX_NODES)
       logical :: tables
       tables = .true.
       if (present(short)) tables = .not. short .or. m%npoin <= SHORT_TABLE_MAX_NODES
@@ -269,7 +289,8 @@ contains
       if (tables) then
          call list_stresses(u, m, body%gp_start, body%xygp, body%sig_gp)
       else
-         write (u, '(/a)') ' STRESSES AT GAUSS POINTS: '//itoa(size(body%sig_gp, 2))//' points, in the result file'// &
+         write (u, '(/a)') ' STRESSES AT GAUSS POINTS: '//itoa(size(body%sig_gp, 2))// &
+               ' points, in the result file'// &
             short_tables_note()
       end if
       if (present(path) .and. present(status)) call check_listing(u, path, status)
@@ -278,7 +299,8 @@ contains
    !> Why a SHORT listing leaves a table out, and how to get it.
    function short_tables_note() result(s)
       character(len=:), allocatable :: s
-      s = ' (the SHORT listing lists the mesh''s tables up to '//itoa(SHORT_TABLE_MAX_NODES)//' nodes;'// &
+      s = ' (the SHORT listing lists the mesh''s tables up to '//itoa(SHORT_TABLE_MAX_NODES)// &
+            ' nodes;'// &
           ' OPTIONS LISTING FULL lists them)'
    end function short_tables_note
 
@@ -301,8 +323,10 @@ contains
       end if
       write (u, '(a)') repeat('-', 78)
       if (.not. whole) then
-         write (u, '(/a)') ' DISPLACEMENTS: '//itoa(m%npoin)//' nodes, in the result file'//short_tables_note()
-         write (u, '(a, 2es16.7)') '   largest |u_x|, |u_y|', maxval(abs(body%disp(1, :))), maxval(abs(body%disp(2, :)))
+         write (u, '(/a)') ' DISPLACEMENTS: '//itoa(m%npoin)//' nodes, in the result file'// &
+               short_tables_note()
+         write (u, '(a, 2es16.7)') '   largest |u_x|, |u_y|', maxval(abs(body%disp(1, :))), &
+               maxval(abs(body%disp(2, :)))
       else
          write (u, '(/a)') ' DISPLACEMENTS'
          write (u, '(a)') '   NODE          X-DISP          Y-DISP'
@@ -328,12 +352,14 @@ contains
       integer :: ie, ig
       real(dp) :: s1, s2, ang
       write (u, '(/a)') ' STRESSES AT GAUSS POINTS'
-      write (u, '(a)') '   ELEM  G.P.     X-COORD     Y-COORD   XX-STRESS   YY-STRESS   XY-STRESS'// &
+      write (u, '(a)') '   ELEM  G.P.     X-COORD     Y-COORD   XX-STRESS   YY-STRESS   &
+      &XY-STRESS'// &
          '   ZZ-STRESS   MAX P.S.   MIN P.S.  ANGLE'
       do ie = 1, m%nelem
          do ig = gp_start(ie), gp_start(ie + 1) - 1
             call principal_stresses(sig(:, ig), s1, s2, ang)
-            write (u, '(i7, i5, 8es12.4, f7.2)') ie, ig - gp_start(ie) + 1, xygp(:, ig), sig(:, ig), s1, s2, ang
+            write (u, '(i7, i5, 8es12.4, f7.2)') ie, ig - gp_start(ie) + 1, xygp(:, ig), &
+                  sig(:, ig), s1, s2, ang
          end do
       end do
    end subroutine list_stresses
@@ -349,10 +375,12 @@ contains
       character(len=5) :: ns, ts
       real(dp) :: pn, pt
       write (u, '(/a)') ' CONTACT PAIRS'
-      write (u, '(a,i0,a,i0,a,es10.3,a,es10.3,a,es10.3)') '   solutions: ', step%solutions, '   repeats: ', &
+      write (u, '(a,i0,a,i0,a,es10.3,a,es10.3,a,es10.3)') '   solutions: ', step%solutions, &
+            '   repeats: ', &
          step%repeats, '   out-of-balance: ', step%residual, '   normal-law drift: ', step%drift, &
          '   tangential-law drift: ', step%drift_t
-      write (u, '(a)') '   PAIR  NODE-A  NODE-B     X-COORD     Y-COORD        AREA    PRESSURE       SHEAR'// &
+      write (u, '(a)') '   PAIR  NODE-A  NODE-B     X-COORD     Y-COORD        AREA    PRESSURE    &
+      &   SHEAR'// &
          '     CLOSURE        SLIP  SLIP-IRREV    MU  NORM  TANG'
       do j = 1, size(c%pairs)
          associate (p => c%pairs(j))
@@ -379,16 +407,19 @@ contains
                pn = cf%pressure(j)
                pt = cf%shear(j)
             end if
-            write (u, '(i7, 2i8, 8es12.4, f6.3, 2(1x,a5))') j, p%node_a, p%node_b, p%position, p%area, pn, pt, &
+            write (u, '(i7, 2i8, 8es12.4, f6.3, 2(1x,a5))') j, p%node_a, p%node_b, p%position, &
+                  p%area, pn, pt, &
                cf%closure(j), cf%slip(j), cf%slip_irreversible(j), cf%friction(j), ns, ts
          end associate
       end do
-      write (u, '(a,es14.6,a,es14.6)') '   sum of normal forces:', sum(cf%force_normal), '   of tangential forces:', &
+      write (u, '(a,es14.6,a,es14.6)') '   sum of normal forces:', sum(cf%force_normal), &
+            '   of tangential forces:', &
          sum(cf%force_tangential)
       ! the energy dissipated by the contact laws (module contact_energy), per interface
       if (allocated(cf%dissipated_energy)) then
          do j = 1, size(cf%dissipated_energy)
-            write (u, '(a,i0,a,es14.6,a,es14.6)') '   energy dissipated, interface ', j, ': cumulative', &
+            write (u, '(a,i0,a,es14.6,a,es14.6)') '   energy dissipated, interface ', j, &
+                  ': cumulative', &
                cf%dissipated_energy(j), '   in this increment', cf%dissipated_increment(j)
          end do
       end if
@@ -399,7 +430,8 @@ contains
       integer, intent(in) :: u
       logical, intent(in) :: contact          !! a contact model
       if (contact) then
-         write (u, '(a)') '   inc  load factor     max |u|  closed  slip  solves rep   residual    time [s]'
+         write (u, '(a)') '   inc  load factor     max |u|  closed  slip  solves rep   residual    &
+         &time [s]'
       else
          write (u, '(a)') '   inc  load factor     max |u|        sum Rx        sum Ry    time [s]'
       end if
@@ -410,19 +442,25 @@ contains
       integer, intent(in) :: u
       type(step_record_t), intent(in) :: step
       type(body_fields_t), intent(in) :: body
-      real(dp), intent(in) :: seconds                           !! elapsed since the start of the run
+      real(dp), intent(in) :: seconds                           !! elapsed since the
+                                                                !! start of the run
       type(contact_fields_t), intent(in), optional :: contact   !! used when step%contact
       if (step%contact .and. present(contact) .and. .not. step%full) then
          ! a step whose body fields were skipped (neither written nor listed: step_record_t%full):
          ! its contact figures, a dash for max |u|, which is not known for it
-         write (u, '(i6, f13.5, a12, i8, i6, i8, i4, es11.3, f12.3)') step%step, maxval(abs(step%lambda)), &
+         write (u, '(i6, f13.5, a12, i8, i6, i8, i4, es11.3, f12.3)') step%step, &
+               maxval(abs(step%lambda)), &
             '-', count(contact%normal_state /= NS_OPEN), &
-            count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), step%solutions, &
+            count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), &
+            step%solutions, &
             step%repeats, step%residual, seconds
       else if (step%contact .and. present(contact)) then
-         write (u, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') step%step, maxval(abs(step%lambda)), &
-            maxval(sqrt(body%disp(1, :)**2 + body%disp(2, :)**2)), count(contact%normal_state /= NS_OPEN), &
-            count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), step%solutions, &
+         write (u, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') step%step, &
+               maxval(abs(step%lambda)), &
+            maxval(sqrt(body%disp(1, :)**2 + body%disp(2, :)**2)), &
+            count(contact%normal_state /= NS_OPEN), &
+            count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), &
+            step%solutions, &
             step%repeats, step%residual, seconds
       else
          write (u, '(i6, f13.5, 3es14.5, f12.3)') step%step, maxval(abs(step%lambda)), &
@@ -444,13 +482,15 @@ contains
    !! or the listing).
    subroutine list_failed(u, completed, message, results_path, results_every)
       integer, intent(in) :: u
-      integer, intent(in) :: completed               !! steps finished before the failure (-1: at set-up)
+      integer, intent(in) :: completed               !! steps finished before the
+                                                     !! failure (-1: at set-up)
       character(len=*), intent(in) :: message        !! why
       character(len=*), intent(in) :: results_path
       integer, intent(in) :: results_every           !! OPTIONS RESULTS
       if (completed < 0) then
          write (u, '(a)') 'kontakt2d: the set-up failed before the first increment: '//message
-         write (u, '(a)') 'kontakt2d: '//results_path//' keeps the mesh and this status (no increment)'
+         write (u, '(a)') 'kontakt2d: '//results_path// &
+               ' keeps the mesh and this status (no increment)'
          return
       end if
       write (u, '(a)') 'kontakt2d: increment '//itoa(completed + 1)//' failed: '//message
@@ -459,14 +499,16 @@ contains
             results_path//' keeps one in '//itoa(results_every)//' (OPTIONS RESULTS), the last '// &
             'of them increment '//itoa((completed/results_every)*results_every)
       else
-         write (u, '(a)') 'kontakt2d: '//itoa(completed)//' completed increment(s) are kept in '//results_path
+         write (u, '(a)') 'kontakt2d: '//itoa(completed)// &
+               ' completed increment(s) are kept in '//results_path
       end if
    end subroutine list_failed
 
    !> Warning: a pair slid more than 10 % of the pair spacing.
    subroutine list_sliding_warning(u, step, pair, slip, spacing)
       integer, intent(in) :: u, step, pair
-      real(dp), intent(in) :: slip, spacing          !! |u_T| of the pair, distance to the nearest pair
+      real(dp), intent(in) :: slip, spacing          !! |u_T| of the pair, distance
+                                                     !! to the nearest pair
       write (u, '(a)') 'kontakt2d: warning: increment '//itoa(step)//': pair '//itoa(pair)// &
          ' has slid '//rtoa(slip)//', more than 10 % of the pair spacing ('// &
          rtoa(spacing)//'): node-to-node contact assumes small sliding (the partners '// &
@@ -482,13 +524,15 @@ contains
       type(run_doubts_t), intent(in) :: doubts
       character(len=*), intent(in) :: summary        !! one line: how many of each kind
       character(len=*), intent(in) :: results_path   !! '' in the listing
-      type(run_info_t), intent(in), optional :: info !! the scheme and options of the run (for the advice;
+      type(run_info_t), intent(in), optional :: info !! the scheme and options of
+                                                     !! the run (for the advice;
                                                      !! without it none)
       integer :: k, k0
       write (u, '(a)') repeat('-', 78)
       write (u, '(a)') 'kontakt2d: completed with doubts: '//summary
       if (len(results_path) > 0) then
-         write (u, '(a)') 'kontakt2d: results (status "doubtful") in '//results_path//'; the increments and '// &
+         write (u, '(a)') 'kontakt2d: results (status "doubtful") in '//results_path// &
+               '; the increments and '// &
             'pairs concerned are named above and in the listing'
          return
       end if
@@ -500,13 +544,16 @@ contains
          write (u, '(a)') '  '//doubts%details(k0:k - 1)
          k0 = k + 1
       end do
-      if (doubts%steps > MAX_DOUBT_LINES) write (u, '(a)') '  ... and '//itoa(doubts%steps - MAX_DOUBT_LINES)// &
+      if (doubts%steps > MAX_DOUBT_LINES) write (u, '(a)') '  ... and '// &
+            itoa(doubts%steps - MAX_DOUBT_LINES)// &
          ' more doubtful increment(s)'
       if (present(info)) then
-         write (u, '(a)') '  (frozen states, law drift and invariant violations: docs/accuracy-and-stability.md; '// &
+         write (u, '(a)') '  (frozen states, law drift and invariant violations: &
+         &docs/accuracy-and-stability.md; '// &
             doubt_advice(info)//')'
       else
-         write (u, '(a)') '  (frozen states, law drift and invariant violations: docs/accuracy-and-stability.md)'
+         write (u, '(a)') '  (frozen states, law drift and invariant violations: &
+         &docs/accuracy-and-stability.md)'
       end if
    end subroutine list_doubts
 
@@ -524,7 +571,9 @@ contains
       else
          text = text//', OPTIONS AUTOINC'
       end if
-      if (.not. info%returning) text = text//', SCHEME NEWTON (the laws and the balance held at every increment end)'
+      if (.not. info%returning) then
+         text = text//', SCHEME NEWTON (the laws and the balance held at every increment end)'
+      end if
    end function doubt_advice
 
    !> Warning for the pairs that took their reversal point A in a step beyond
@@ -536,7 +585,8 @@ contains
    pure function reversal_warning(c, step, pa_old, pa) result(text)
       type(contact_def_t), intent(in) :: c
       integer, intent(in) :: step                   !! the step (increment of the result file)
-      real(dp), intent(in) :: pa_old(:)             !! (npair) reversal pressures before the step (0: none)
+      real(dp), intent(in) :: pa_old(:)             !! (npair) reversal pressures
+                                                    !! before the step (0: none)
       real(dp), intent(in) :: pa(:)                 !! (npair) after it
       character(len=:), allocatable :: text
       integer :: j, n, jw
@@ -560,17 +610,22 @@ contains
       end do
       if (n == 0) return
       associate (f => c%ifaces(c%pairs(jw)%iface), pr => c%pairs(jw))
-         text = 'increment '//itoa(step)//': '//itoa(n)//' pair(s) unload from beyond the admissible range of '// &
-                'their unloading law; the farthest: pair '//itoa(jw)//' (nodes '//itoa(pr%node_a)//'-'// &
-                itoa(pr%node_b)//', interface '//itoa(pr%iface)//') from p_A = '//pressure_text(pa(jw), f%units)// &
+         text = 'increment '//itoa(step)//': '//itoa(n)// &
+               ' pair(s) unload from beyond the admissible range of '// &
+                'their unloading law; the farthest: pair '//itoa(jw)//' (nodes '// &
+                itoa(pr%node_a)//'-'// &
+                itoa(pr%node_b)//', interface '//itoa(pr%iface)//') from p_A = '// &
+                pressure_text(pa(jw), f%units)// &
                 ' > p* = '//pressure_text(f%p_reversal_max, f%units)
          ures = f%cn*pa(jw)**f%m - f%cn2*pa(jw)**f%m2
          if (ures < 0.0_dp) then
             text = text//': its residual closure u_A - c_n2 p_A^m2 = '//rtoa(ures)// &
-                   trim(merge(' (model units)', ' mm           ', f%units == UNITS_MODEL))//' < 0 is taken as 0 '// &
+                   trim(merge(' (model units)', ' mm           ', f%units == UNITS_MODEL))// &
+                   ' < 0 is taken as 0 '// &
                    '(unloading along u = u_A (p/p_A)^m2; docs/contact.md)'
          else
-            text = text//': its unloading branch is softer than loading at A, followed as given (docs/contact.md)'
+            text = text//': its unloading branch is softer than loading at A, followed as given &
+            &(docs/contact.md)'
          end if
       end associate
    end function reversal_warning
@@ -582,7 +637,8 @@ contains
    !! file); counted in nwarn.
    subroutine list_reversals(c, pa_old, pa, step, lu, have_lis, nwarn)
       type(contact_def_t), intent(in) :: c
-      real(dp), intent(in) :: pa_old(:), pa(:)      !! (npair) reversal pressures before and after the step
+      real(dp), intent(in) :: pa_old(:), pa(:)      !! (npair) reversal pressures
+                                                    !! before and after the step
       type(step_record_t), intent(inout) :: step    !! the step (its number; warnings set)
       integer, intent(in) :: lu                     !! listing unit
       logical, intent(in) :: have_lis               !! a listing is written

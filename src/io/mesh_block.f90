@@ -73,7 +73,8 @@ contains
          select case (key)
          case ('GMSH')
             if (gmsh_line /= 0) then
-               call d%error_at(ic, 1, 'E-MESH', 'MESH: a second GMSH card (the first is on line '// &
+               call d%error_at(ic, 1, 'E-MESH', &
+                               'MESH: a second GMSH card (the first is on line '// &
                                itoa(gmsh_line)//'); give one mesh file')
                cycle
             end if
@@ -81,32 +82,38 @@ contains
             gmsh_line = d%cards(ic)%line
             gmsh_card = ic
             if (len(file) == 0) then
-               call d%error_at(ic, 11, 'E-MISSING', 'MESH: GMSH expected the path of a .msh file in columns '// &
+               call d%error_at(ic, 11, 'E-MISSING', &
+                               'MESH: GMSH expected the path of a .msh file in columns '// &
                                '11 onwards, found a blank field')
                gmsh_line = -1
             end if
          case ('MATERIAL')
             name = trim(adjustl(d%field_text(ic, 11, 40)))
             if (len(name) == 0) then
-               call d%error_at(ic, 11, 'E-MISSING', 'MESH: MATERIAL expected a physical surface name in '// &
+               call d%error_at(ic, 11, 'E-MISSING', &
+                               'MESH: MATERIAL expected a physical surface name in '// &
                                'columns 11-40, found a blank field')
                cycle
             end if
             call d%get_int(ic, 41, 45, 'MESH/MATERIAL', 'MATNO', imat, cok)
             if (cok .and. len_trim(d%field_text(ic, 46, 100000)) > 0) then
-               call d%error_at(ic, 46, 'E-EXTRA', 'MESH/MATERIAL: expected the name (columns 11-40) and MATNO '// &
-                               '(columns 41-45), found more: "'//shown(trim(adjustl(d%field_text(ic, 46, 100000))))//'"')
+               call d%error_at(ic, 46, 'E-EXTRA', &
+                               'MESH/MATERIAL: expected the name (columns 11-40) and MATNO '// &
+                               '(columns 41-45), found more: "'// &
+                               shown(trim(adjustl(d%field_text(ic, 46, 100000))))//'"')
                cok = .false.
             end if
             if (.not. cok) cycle
             if (imat < 1 .or. imat > m%nmats) then
-               call d%error_at(ic, 41, 'E-RANGE', 'MESH/MATERIAL: MATNO (columns 41-45) expected 1..'// &
+               call d%error_at(ic, 41, 'E-RANGE', &
+                               'MESH/MATERIAL: MATNO (columns 41-45) expected 1..'// &
                                itoa(m%nmats)//' (NMATS), found '//itoa(imat))
                cycle
             end if
             do k = 1, nmat
                if (same_name(names(k), name)) then
-                  call d%error_at(ic, 11, 'E-DUPLICATE', 'MESH/MATERIAL: physical surface "'//name// &
+                  call d%error_at(ic, 11, 'E-DUPLICATE', &
+                                  'MESH/MATERIAL: physical surface "'//name// &
                                   '" is given twice (first on line '//itoa(lines(k))//')')
                   cok = .false.
                end if
@@ -124,19 +131,25 @@ contains
          case ('NODE')
             call read_extra_node(d, ic, xnames, xlines, xy)
          case default
-            call d%error_at(ic, 1, 'E-MESH', 'MESH: expected a GMSH, MATERIAL or NODE card, found "'// &
+            call d%error_at(ic, 1, 'E-MESH', &
+                            'MESH: expected a GMSH, MATERIAL or NODE card, found "'// &
                             shown(trim(d%cards(ic)%text))//'"')
          end select
       end do
-      if (gmsh_line == 0) call d%error_at(ickw, 1, 'E-MESH', 'MESH: the block has no GMSH card naming the mesh file')
-      if (nmat == 0) call d%error_at(ickw, 1, 'E-MESH', 'MESH: the block has no MATERIAL card (one per '// &
-                                     'physical surface: MATERIAL  <name, columns 11-40> <MATNO, columns 41-45>)')
+      if (gmsh_line == 0) then
+         call d%error_at(ickw, 1, 'E-MESH', 'MESH: the block has no GMSH card naming the mesh file')
+      end if
+      if (nmat == 0) call d%error_at(ickw, 1, 'E-MESH', &
+                                     'MESH: the block has no MATERIAL card (one per '// &
+                                     'physical surface: MATERIAL  <name, columns 11-40> <MATNO, &
+                                     &columns 41-45>)')
       ok = d%errors%n == n0
       if (.not. ok) return
 
       m%mesh_file = mesh_path(d%file, file)
       call read_gmsh(m%mesh_file, msh, d%errors)
-      if (d%errors%n == n0) call gmsh_to_model(msh, names(1:nmat), mats(1:nmat), lines(1:nmat), d%file, &
+      if (d%errors%n == n0) call gmsh_to_model(msh, names(1:nmat), mats(1:nmat), lines(1:nmat), &
+                                               d%file, &
                                                nnode_req, m, d%errors)
       ! an error about the mesh file as a whole (it cannot be opened, it has no
       ! 2-D elements, ...) has no line of its own: it is located at the GMSH card
@@ -169,7 +182,8 @@ contains
       cok = .true.
       name = trim(adjustl(d%field_text(ic, 11, 30)))
       if (len(name) == 0) then
-         call d%error_at(ic, 11, 'E-MISSING', 'MESH/NODE: field NAME (columns 11-30) expected the name of the '// &
+         call d%error_at(ic, 11, 'E-MISSING', &
+                         'MESH/NODE: field NAME (columns 11-30) expected the name of the '// &
                          'extra node, found a blank field')
          cok = .false.
       end if
@@ -178,14 +192,16 @@ contains
       if (cok) call d%check_coordinate(ic, 31, 'MESH/NODE', 'X', x, cok)
       if (cok) call d%check_coordinate(ic, 41, 'MESH/NODE', 'Y', y, cok)
       if (cok .and. len_trim(d%field_text(ic, 51, 100000)) > 0) then
-         call d%error_at(ic, 51, 'E-EXTRA', 'MESH/NODE: expected NAME (columns 11-30), X (31-40) and Y (41-50), '// &
+         call d%error_at(ic, 51, 'E-EXTRA', &
+                         'MESH/NODE: expected NAME (columns 11-30), X (31-40) and Y (41-50), '// &
                          'found more: "'//shown(trim(adjustl(d%field_text(ic, 51, 100000))))//'"')
          cok = .false.
       end if
       if (.not. cok) return
       do k = 1, size(xnames)
          if (same_name(trim(xnames(k)), name)) then
-            call d%error_at(ic, 11, 'E-DUPLICATE', 'MESH/NODE: the name "'//name//'" is given twice (first on line '// &
+            call d%error_at(ic, 11, 'E-DUPLICATE', &
+                            'MESH/NODE: the name "'//name//'" is given twice (first on line '// &
                             itoa(d%cards(xlines(k))%line)//')')
             return
          end if
@@ -209,7 +225,8 @@ contains
       n0 = d%errors%n
       do k = 1, size(xnames)
          if (find_node_set(m, trim(xnames(k))) > 0) then
-            call d%error_at(xlines(k), 11, 'E-DUPLICATE', 'MESH/NODE: "'//trim(xnames(k))//'" is already a '// &
+            call d%error_at(xlines(k), 11, 'E-DUPLICATE', &
+                            'MESH/NODE: "'//trim(xnames(k))//'" is already a '// &
                             'physical group of '//m%mesh_file//'; give the extra node another name')
          end if
       end do

@@ -53,7 +53,8 @@ contains
       p%group = word == 'GROUP'
       p%name = trim(adjustl(d%field_text(ic, 11, 30)))
       if (len(p%name) == 0) then
-         call d%error_at(ic, 11, 'E-MISSING', card//': field NAME (columns 11-30) expected the section''s '// &
+         call d%error_at(ic, 11, 'E-MISSING', card// &
+                         ': field NAME (columns 11-30) expected the section''s '// &
                          'name, found a blank field')
          ok = .false.
       end if
@@ -62,7 +63,8 @@ contains
       call d%get_int(ic, 46, 50, card, 'CASE', p%icase, ok, default=1)
       call d%get_word(ic, 51, 60, card, 'MODE', mode, ok, default='LOCK')
       if (ok .and. len_trim(d%field_text(ic, 61, 100000)) > 0) then
-         call d%error_at(ic, 61, 'E-EXTRA', card//': expected NAME, AXIS, FORCE, CASE, MODE in columns 11-60, '// &
+         call d%error_at(ic, 61, 'E-EXTRA', card// &
+                         ': expected NAME, AXIS, FORCE, CASE, MODE in columns 11-60, '// &
                          'found more: "'//shown(trim(adjustl(d%field_text(ic, 61, 100000))))//'"')
          ok = .false.
       end if
@@ -74,17 +76,20 @@ contains
          case ('Y')
             p%axis = 2
          case default
-            call d%error_at(ic, 31, 'E-RANGE', card//': AXIS (columns 31-35) expected X or Y, found "'//shown(ax)//'"')
+            call d%error_at(ic, 31, 'E-RANGE', card// &
+                            ': AXIS (columns 31-35) expected X or Y, found "'//shown(ax)//'"')
             ok = .false.
          end select
          if (ok .and. m%ntype == NTYPE_AXISYMMETRIC .and. p%axis /= 2) then
-            call d%error_at(ic, 31, 'E-RANGE', card//': AXIS (columns 31-35) expected Y (the axis z) in an '// &
+            call d%error_at(ic, 31, 'E-RANGE', card// &
+                            ': AXIS (columns 31-35) expected Y (the axis z) in an '// &
                             'axisymmetric analysis, found "'//shown(ax)//'"')
             ok = .false.
          end if
       end if
       if (ok .and. (p%icase < 1 .or. p%icase > MAX_CASE)) then
-         call d%error_at(ic, 46, 'E-RANGE', card//': CASE (columns 46-50) expected a load case 1..'// &
+         call d%error_at(ic, 46, 'E-RANGE', card// &
+                         ': CASE (columns 46-50) expected a load case 1..'// &
                          itoa(MAX_CASE)//', found '//itoa(p%icase))
          ok = .false.
       end if
@@ -95,7 +100,8 @@ contains
          case ('FORCE')
             p%mode = PRETENSION_FORCE
          case default
-            call d%error_at(ic, 51, 'E-RANGE', card//': MODE (columns 51-60) expected LOCK or FORCE, found "'// &
+            call d%error_at(ic, 51, 'E-RANGE', card// &
+                            ': MODE (columns 51-60) expected LOCK or FORCE, found "'// &
                             shown(mode)//'"')
             ok = .false.
          end select
@@ -104,7 +110,8 @@ contains
          do k = 1, size(pts)
             if (pts(k)%line <= 0) cycle
             if (same_name(pts(k)%name, p%name)) then
-               call d%error_at(ic, 11, 'E-DUPLICATE', card//': section "'//p%name//'" is given twice (first on '// &
+               call d%error_at(ic, 11, 'E-DUPLICATE', &
+                               card//': section "'//p%name//'" is given twice (first on '// &
                                'line '//itoa(pts(k)%line)//')')
                ok = .false.
             end if
@@ -113,7 +120,8 @@ contains
       if (ok .and. p%group) then
          is = find_node_set(m, p%name)
          if (is == 0) then
-            call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//p%name//'" is no node set of the mesh'// &
+            call d%error_at(ic, 11, 'E-GROUP', card//': GROUP "'//p%name// &
+                            '" is no node set of the mesh'// &
                             ' (a SECTION card takes a node list)')
             ok = .false.
          else
@@ -141,8 +149,10 @@ contains
          call d%get_int(ic, 5*k - 4, 5*k, 'LOADS/PRETENSION', 'NODE', node, ok)
          if (.not. ok) cycle
          if (node < 1 .or. node > m%npoin) then
-            call d%error_at(ic, 5*k - 4, 'E-RANGE', 'LOADS/PRETENSION: NODE (columns '//itoa(5*k - 4)//'-'// &
-                            itoa(5*k)//') expected a node number 1..'//itoa(m%npoin)//', found '//itoa(node))
+            call d%error_at(ic, 5*k - 4, 'E-RANGE', &
+                            'LOADS/PRETENSION: NODE (columns '//itoa(5*k - 4)//'-'// &
+                            itoa(5*k)//') expected a node number 1..'//itoa(m%npoin)// &
+                            ', found '//itoa(node))
             cycle
          end if
          if (any(p%nodes == node)) then
@@ -153,7 +163,8 @@ contains
          p%nodes = [p%nodes, node]
       end do
       if (len_trim(d%field_text(ic, 81, 100000)) > 0) then
-         call d%error_at(ic, 81, 'E-EXTRA', 'LOADS/PRETENSION: expected at most 16 node numbers (columns 1-80), '// &
+         call d%error_at(ic, 81, 'E-EXTRA', &
+                         'LOADS/PRETENSION: expected at most 16 node numbers (columns 1-80), '// &
                          'found more: "'//shown(trim(adjustl(d%field_text(ic, 81, 100000))))//'"')
       end if
    end subroutine read_pretension_nodes
@@ -168,8 +179,10 @@ contains
       do k = 1, size(pts)
          if (pts(k)%line <= 0) cycle
          if (.not. pts(k)%group .and. size(pts(k)%nodes) < 2) then
-            call d%errors%add('E-MISSING', 'LOADS/PRETENSION: SECTION "'//pts(k)%name//'" expected at least two '// &
-                              'nodes on the data cards after it, found '//itoa(size(pts(k)%nodes)), &
+            call d%errors%add('E-MISSING', 'LOADS/PRETENSION: SECTION "'//pts(k)%name// &
+                              '" expected at least two '// &
+                              'nodes on the data cards after it, found '// &
+                              itoa(size(pts(k)%nodes)), &
                               file=d%file, line=pts(k)%line, col=11)
          end if
       end do

@@ -21,8 +21,10 @@ contains
       if (.not. allocated(m%pretensions)) return
       do k = 1, size(m%pretensions)
          associate (p => m%pretensions(k))
-            write (line, '(a,i0,a,a1,a,es12.5,a,i0,a,i0)') ' Pretension   : "'//p%name//'", ', size(p%nodes), &
-               ' nodes across ', merge('x', 'y', p%axis == 1), ', preload ', p%force, ' x factor of case ', &
+            write (line, '(a,i0,a,a1,a,es12.5,a,i0,a,i0)') ' Pretension   : "'//p%name//'", ', &
+                  size(p%nodes), &
+               ' nodes across ', merge('x', 'y', p%axis == 1), ', preload ', p%force, &
+               ' x factor of case ', &
                p%icase, ', reference node ', p%ref
             write (u, '(a)') trim(line)//merge(' (held: locked)', ' (held: force) ', p%mode == 1)
          end associate
@@ -38,7 +40,8 @@ contains
       integer :: k
       if (.not. allocated(srec%pretension_force)) return
       do k = 1, size(srec%pretension_force)
-         write (u, '(a,i0,a,es17.10,a,es14.7)') ' pretension   increment ', srec%step, ' section "'// &
+         write (u, '(a,i0,a,es17.10,a,es14.7)') ' pretension   increment ', srec%step, &
+               ' section "'// &
             m%pretensions(k)%name//'": force ', srec%pretension_force(k), ', shortening ', &
             srec%pretension_shortening(k)
       end do
@@ -53,8 +56,10 @@ contains
       integer :: k
       if (.not. allocated(srec%pretension_force)) return
       do k = 1, size(srec%pretension_force)
-         write (u, '(a,i0,a,es17.10,a,es14.7)') ' pretension section "'//m%pretensions(k)%name//'" at increment ', &
-            srec%step, ': force ', srec%pretension_force(k), ', shortening ', srec%pretension_shortening(k)
+         write (u, '(a,i0,a,es17.10,a,es14.7)') ' pretension section "'//m%pretensions(k)%name// &
+               '" at increment ', &
+            srec%step, ': force ', srec%pretension_force(k), ', shortening ', &
+            srec%pretension_shortening(k)
       end do
    end subroutine list_pretension_summary
 end module pretension_report

@@ -75,8 +75,10 @@ module results_hdf5
    use model, only: model_t, ntype_name, MAX_NODE
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, cycle_table_t
    use records, only: numbering_report_t
-   use run_plan, only: solver_name, choice_name, system_name, ordering_name, scheme_name, CHOICE_AUTOMATIC
-   use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, law_name, &
+   use run_plan, only: solver_name, choice_name, system_name, ordering_name, scheme_name, &
+         CHOICE_AUTOMATIC
+   use contact_types, only: contact_def_t, units_name, friction_name, update_name, slip_name, &
+         law_name, &
                             matching_name, rigid_shape_name, MAX_PAIR_NODES
    use version, only: K2D_VERSION
    use disk_reserve, only: reserve_t
@@ -98,13 +100,15 @@ module results_hdf5
       integer :: ncells(4) = 0                 !! elements of each kind: T3, Q4, Q8, Q9
       integer :: nmixed = 0                    !! length of /mesh/cells_mixed (mixed meshes)
       integer :: npair = 0                     !! contact pairs (the sidecar's contact grid)
-      integer, allocatable :: incs(:)          !! finished increments (1:ncompleted; grown by doubling)
+      integer, allocatable :: incs(:)          !! finished increments (1:ncompleted;
+                                               !! grown by doubling)
       real(dp), allocatable :: lambda(:, :)    !! (ncase, 1:ncompleted) their load factors
       integer :: xdmf_done = 0                 !! finished increments the XDMF file names
       real(dp), allocatable :: lambda_open(:)  !! load factors of the increment being written
       integer :: inc_open = 0
       type(reserve_t) :: reserve                    !! room for closing the file after a failure
-      logical :: discard = .false.                  !! delete the file at close (no room for the reserve)
+      logical :: discard = .false.                  !! delete the file at close
+                                                    !! (no room for the reserve)
    contains
       procedure :: create => results_create
       procedure :: write_run_info => results_run_info
@@ -169,15 +173,19 @@ contains
       if (err /= 0) then
          ! no room even for the reserve: nothing of the run can be kept
          this%discard = .true.
-         call status%set(STAT_IO, 'no room on the disk for '//path//'.reserve ('//itoa(int(RESERVE_BYTES))// &
-                         ' bytes kept for closing the result file after a failure): is the disk full?')
+         call status%set(STAT_IO, 'no room on the disk for '//path//'.reserve ('// &
+                         itoa(int(RESERVE_BYTES))// &
+                         ' bytes kept for closing the result file after a failure): is the disk &
+                         &full?')
          return
       end if
       ! the mesh (coordinates, cells in three layouts, Gauss points)
-      call probe_room(this, 8_i8*size(m%coord, kind=i8) + 4_i8*(2*MAX_NODE + 4)*m%nelem + 28_i8*size(body%xygp, 2) &
+      call probe_room(this, 8_i8*size(m%coord, kind=i8) + 4_i8*(2*MAX_NODE + 4)*m%nelem + &
+                      28_i8*size(body%xygp, 2) &
                       + 4_i8*m%npoin, err)
       if (err /= 0) then
-         call status%set(STAT_IO, 'no room on the disk for the mesh in '//path//' (is the disk full?)')
+         call status%set(STAT_IO, 'no room on the disk for the mesh in '//path// &
+                         ' (is the disk full?)')
          call results_set_status(this, 'failed at set-up: '//status%message)
          return
       end if
@@ -275,16 +283,20 @@ contains
       type(contact_fields_t), intent(in), optional :: contact   !! written when step%contact
       integer(hid_t) :: gid
       integer :: err
-      real(dp), allocatable :: u3(:, :)              !! the displacements with a zero third component
+      real(dp), allocatable :: u3(:, :)              !! the displacements with
+                                                     !! a zero third component
       integer(i8) :: nbytes
 
       ! the body fields (displacement twice, stresses, reactions) and the contact fields
-      nbytes = 8_i8*(size(body%disp, kind=i8)*5/2 + size(body%sig_nd, kind=i8) + size(body%sig_gp, kind=i8) &
+      nbytes = 8_i8*(size(body%disp, kind=i8)*5/2 + size(body%sig_nd, kind=i8) + &
+                     size(body%sig_gp, kind=i8) &
                      + size(body%react, kind=i8) + size(body%gp_start, kind=i8)) + 512_i8*this%npair
       call probe_room(this, nbytes, err)
       if (err /= 0) then
-         call status%set(STAT_IO, 'no room on the disk for the results of increment '//itoa(step%step)// &
-                         ' (about '//itoa(int(nbytes/1024))//' kB) in '//this%path//': is the disk full?')
+         call status%set(STAT_IO, 'no room on the disk for the results of increment '// &
+                         itoa(step%step)// &
+                         ' (about '//itoa(int(nbytes/1024))//' kB) in '//this%path// &
+                         ': is the disk full?')
          return
       end if
       call open_increment(this, step, gid, status)
@@ -326,12 +338,18 @@ contains
       call attr_int(gid, 'deck_increment', step%deck_increment, err)
       call attr_real0(gid, 'deck_increment_fraction', step%fraction, err)
       call attr_int(gid, 'cuts', step%cuts, err)
-      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(step%step))
-      if (step%contact .and. present(contact) .and. status%ok()) call write_contact_fields(gid, contact, status)
+      if (err < 0) then
+         call status%set(STAT_IO, 'HDF5: cannot write the results of increment '//itoa(step%step))
+      end if
+      if (step%contact .and. present(contact) .and. status%ok()) then
+         call write_contact_fields(gid, contact, status)
+      end if
       ! `converged` last: a group that a failed write left incomplete is never marked converged
       if (status%ok()) then
          call attr_int(gid, 'converged', merge(1, 0, step%converged), err)
-         if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write attributes of increment '//itoa(step%step))
+         if (err < 0) then
+            call status%set(STAT_IO, 'HDF5: cannot write attributes of increment '//itoa(step%step))
+         end if
       end if
       if (.not. status%ok()) then
          call drop_increment(this, gid)
@@ -354,14 +372,17 @@ contains
       this%lambda_open = step%lambda
       call h5gcreate_f(this%fid, 'increments/'//trim(name), gid, err)
       if (err < 0) then
-         call status%set(STAT_IO, 'HDF5: cannot create group /increments/'//trim(name)//' in '//this%path)
+         call status%set(STAT_IO, 'HDF5: cannot create group /increments/'//trim(name)//' in '// &
+                         this%path)
          return
       end if
       call attr_int(gid, 'increment', step%step, err)
       call attr_real1(gid, 'load_factor', step%lambda, err)
       call attr_int(gid, 'iterations', step%solutions, err)
       call attr_int(gid, 'repeats', step%repeats, err)
-      if (err < 0) call status%set(STAT_IO, 'HDF5: cannot write attributes of increment '//itoa(step%step))
+      if (err < 0) then
+         call status%set(STAT_IO, 'HDF5: cannot write attributes of increment '//itoa(step%step))
+      end if
    end subroutine open_increment
 
    !> A group that a failed write left incomplete: closed and unlinked, so
@@ -395,7 +416,8 @@ contains
       call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, e)
       call keep(e, err)
       if (err < 0) then
-         call status%set(STAT_IO, 'HDF5: cannot write increment '//itoa(this%inc_open)//' to '//this%path// &
+         call status%set(STAT_IO, 'HDF5: cannot write increment '//itoa(this%inc_open)//' to '// &
+                         this%path// &
                          ' (close its group, flush the file: is the disk full?)')
          call h5ldelete_f(this%fid, 'increments/'//group_name(this%inc_open), e)
          return
@@ -417,7 +439,8 @@ contains
             block
                integer, allocatable :: ti(:)
                real(dp), allocatable :: t(:, :)
-               allocate (ti(2*size(this%incs) + 16), t(size(this%lambda, 1), 2*size(this%incs) + 16))
+               allocate (ti(2*size(this%incs) + 16), &
+                         t(size(this%lambda, 1), 2*size(this%incs) + 16))
                ti(1:this%ncompleted - 1) = this%incs(1:this%ncompleted - 1)
                t(:, 1:this%ncompleted - 1) = this%lambda(:, 1:this%ncompleted - 1)
                call move_alloc(ti, this%incs)
@@ -429,7 +452,8 @@ contains
          ! the XDMF file is rewritten whole: after each of the first XDMF_EVERY_UNTIL
          ! increments, then when the count has grown by an eighth (linear time in
          ! all), and at the end of the run (set_status)
-         if (this%ncompleted <= XDMF_EVERY_UNTIL .or. this%ncompleted - this%xdmf_done >= this%xdmf_done/8) then
+         if (this%ncompleted <= XDMF_EVERY_UNTIL .or. this%ncompleted - this%xdmf_done >= &
+               this%xdmf_done/8) then
             call update_xdmf(this, status)
          end if
       end if
@@ -490,9 +514,11 @@ contains
       type(status_t), intent(inout) :: status
       integer :: ierr
       call write_xdmf(xdmf_path(this%path), this%path, this%npoin, this%ncells, this%nmixed, &
-                      this%incs(1:this%ncompleted), this%lambda(:, 1:this%ncompleted), ierr, this%npair)
+                      this%incs(1:this%ncompleted), this%lambda(:, 1:this%ncompleted), ierr, &
+                      this%npair)
       if (ierr /= 0) then
-         call status%set(STAT_IO, 'cannot write the XDMF file '//xdmf_path(this%path)//' (error '//itoa(ierr)//')')
+         call status%set(STAT_IO, 'cannot write the XDMF file '//xdmf_path(this%path)// &
+                         ' (error '//itoa(ierr)//')')
       else
          this%xdmf_done = this%ncompleted
       end if
@@ -526,7 +552,9 @@ contains
       call h5fflush_f(this%fid, H5F_SCOPE_GLOBAL_F, e)
       call keep(e, err)
       if (err < 0 .and. present(status)) then
-         if (status%ok()) call status%set(STAT_IO, 'HDF5: cannot write the status of the run to '//this%path// &
+         if (status%ok()) call status%set(STAT_IO, &
+                                          'HDF5: cannot write the status of the run to '// &
+                                          this%path// &
                                           ' (is the disk full?)')
       end if
    end subroutine results_set_status
@@ -553,7 +581,9 @@ contains
       if (err < 0) then
          call skip_exit_handlers()
          if (present(status)) then
-            if (status%ok()) call status%set(STAT_IO, 'HDF5: cannot close '//this%path//' (is the disk full?)')
+            if (status%ok()) then
+               call status%set(STAT_IO, 'HDF5: cannot close '//this%path//' (is the disk full?)')
+            end if
          end if
       end if
    end subroutine results_close
@@ -782,7 +812,8 @@ contains
       this%npair = np
       call probe_room(this, 256_i8*np + 1024_i8*size(c%ifaces), e)
       if (e /= 0) then
-         call status%set(STAT_IO, 'no room on the disk for the contact definition in '//this%path// &
+         call status%set(STAT_IO, 'no room on the disk for the contact definition in '// &
+                         this%path// &
                          ' (is the disk full?)')
          call results_set_status(this, 'failed at set-up: '//status%message)
          return

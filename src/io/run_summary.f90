@@ -58,10 +58,12 @@ module run_summary
    type :: run_summary_t
       integer :: nstep = 0                          !! accepted steps
       integer :: icase = 1                          !! the load case whose factor the stages follow
-      logical :: by_deck = .true.                   !! stages mapped onto steps (no automatic increments)
+      logical :: by_deck = .true.                   !! stages mapped onto steps
+                                                    !! (no automatic increments)
       integer, allocatable :: first(:), last(:)     !! steps of each stage
       integer, allocatable :: direction(:)          !! +1 loading, -1 unloading, 0 holding
-      real(dp), allocatable :: lam_from(:), lam_to(:)  !! load factor at the start and end of each stage
+      real(dp), allocatable :: lam_from(:), lam_to(:)  !! load factor at the start
+                                                       !! and end of each stage
       integer, allocatable :: solutions(:)          !! solutions of each stage
       real(dp), allocatable :: drift(:)             !! worst law drift of each stage
       integer :: solutions_total = 0
@@ -76,30 +78,37 @@ module run_summary
       real(dp) :: width = 0.0_dp, area = 0.0_dp
       real(dp) :: approach = 0.0_dp
       real(dp) :: force_n = 0.0_dp, force_t = 0.0_dp
-      logical :: unloaded = .false.                 !! some pair was unloaded (residual closure applies)
+      logical :: unloaded = .false.                 !! some pair was unloaded (residual
+                                                    !! closure applies)
       integer :: nunloaded = 0                      !! pairs unloaded
       real(dp) :: residual_closure = 0.0_dp
-      integer :: nbeyond = 0                        !! pairs whose reversal pressure exceeds p* of their interface
+      integer :: nbeyond = 0                        !! pairs whose reversal pressure
+                                                    !! exceeds p* of their interface
       integer :: beyond_pair = 0                    !! the one farthest beyond (largest p_A / p*)
       real(dp) :: beyond_pa = 0.0_dp, beyond_pstar = 0.0_dp  !! its p_A and p*
       character(len=:), allocatable :: length_unit, stress_unit, force_unit
-      character(len=:), allocatable :: estimate     !! the error estimate's line ('' if none), error_estimate_line
+      character(len=:), allocatable :: estimate     !! the error estimate's line (''
+                                                    !! if none), error_estimate_line
       ! the figures of that line and of the lines after the summary (the result file's /summary)
-      logical :: estimated = .false.                !! the last step's body fields hold an error estimate
+      logical :: estimated = .false.                !! the last step's body fields
+                                                    !! hold an error estimate
       real(dp) :: estimated_error = 0.0_dp          !! its estimated error, fraction [-]
       integer, allocatable :: zone_pairs(:)         !! (niface) closed pairs of each contact zone
       real(dp), allocatable :: zone_width(:), zone_jump(:)  !! (niface) their width, pressure jump
       real(dp), allocatable :: dissipated(:)        !! (niface) energy dissipated, cumulative ...
       real(dp), allocatable :: dissipated_normal(:), dissipated_tangential(:)  !! ... and its parts
       ! filled by the caller (run_report): the time, doubts, warnings, pretension sections
-      real(dp) :: seconds = 0.0_dp                  !! wall time of the run when the summary was made
+      real(dp) :: seconds = 0.0_dp                  !! wall time of the run when
+                                                    !! the summary was made
       integer :: warnings = 0                       !! warnings printed about the method
-      integer :: doubtful = 0                       !! doubtful increments (their count by kind below)
+      integer :: doubtful = 0                       !! doubtful increments (their
+                                                    !! count by kind below)
       integer :: doubt_frozen = 0, doubt_drift = 0, doubt_violations = 0
       integer :: first_doubtful = 0                 !! the first doubtful increment
       character(len=:), allocatable :: doubts       !! the doubts' one-line summary ('' none)
       character(len=:), allocatable :: doubt_details   !! one line per doubtful increment ('' none)
-      integer :: pretension_step = 0                !! the last increment with section forces (0: none)
+      integer :: pretension_step = 0                !! the last increment with
+                                                    !! section forces (0: none)
       real(dp), allocatable :: pretension_force(:), pretension_shortening(:)  !! (nsection) at it
    end type run_summary_t
 
@@ -109,10 +118,12 @@ contains
    subroutine list_run_summary(m, body, cf, solutions, drift, ua, pa, have_lis, lu, quiet, t0, rate)
       type(model_t), intent(in) :: m                    !! the model
       type(body_fields_t), intent(in) :: body           !! body fields of the last step
-      type(contact_fields_t), intent(in) :: cf          !! contact fields of the last step (unallocated without contact)
+      type(contact_fields_t), intent(in) :: cf          !! contact fields of the last step
+                                                        !! (unallocated without contact)
       integer, intent(in) :: solutions(:)               !! solutions of every accepted step
       real(dp), intent(in) :: drift(:)                  !! law drift of every accepted step
-      real(dp), intent(in) :: ua(:), pa(:)              !! (npair) reversal points A of the pairs (0: never unloaded)
+      real(dp), intent(in) :: ua(:), pa(:)              !! (npair) reversal points A of
+                                                        !! the pairs (0: never unloaded)
       logical, intent(in) :: have_lis                   !! a listing is written
       integer, intent(in) :: lu                         !! its unit
       logical, intent(in) :: quiet                      !! no terminal output
@@ -159,7 +170,9 @@ contains
          call dissipation_parts(m, cf, s%dissipated_normal, s%dissipated_tangential)
       end if
       np = 0
-      if (allocated(cf%pressure) .and. allocated(m%contact%pairs)) np = min(size(cf%pressure), size(m%contact%pairs))
+      if (allocated(cf%pressure) .and. allocated(m%contact%pairs)) then
+         np = min(size(cf%pressure), size(m%contact%pairs))
+      end if
       s%contact = np > 0
       if (.not. s%contact) return
       s%npair = np
@@ -182,7 +195,8 @@ contains
                if (f%law /= LAW_ROUGH) cycle
                if (pa(k) > f%p_reversal_max) then
                   s%nbeyond = s%nbeyond + 1
-                  if (s%beyond_pair == 0 .or. pa(k)/f%p_reversal_max > s%beyond_pa/max(s%beyond_pstar, tiny(1.0_dp))) then
+                  if (s%beyond_pair == 0 .or. pa(k)/f%p_reversal_max > &
+                        s%beyond_pa/max(s%beyond_pstar, tiny(1.0_dp))) then
                      s%beyond_pair = k
                      s%beyond_pa = pa(k)
                      s%beyond_pstar = f%p_reversal_max
@@ -191,8 +205,12 @@ contains
                ! unloaded: a reversal point, and open or its pressure moved off p_A by more than
                ! round-off (a pair that holds its pressure at A, e.g. under a tangential cycle, has
                ! lost no closure)
-               if (cf%normal_state(k) /= NS_OPEN .and. abs(cf%pressure(k) - pa(k)) <= UNLOADED_FRACTION*pa(k)) cycle
-               ! the permanent set, clamped at 0 beyond the law's range (contact_laws' residual_closure)
+               if (cf%normal_state(k) /= NS_OPEN .and. abs(cf%pressure(k) - pa(k)) <= &
+                     UNLOADED_FRACTION*pa(k)) then
+                  cycle
+               end if
+               ! the permanent set, clamped at 0 beyond the law's range (contact_laws'
+               ! residual_closure)
                ures = max(ua(k) - f%cn2*pa(k)**f%m2, 0.0_dp)
             end associate
             if (s%unloaded) ures = max(ures, s%residual_closure)
@@ -243,7 +261,9 @@ contains
       do k = 1, nst
          s%solutions(k) = sum(solutions(first(k):last(k)))
          s%drift(k) = 0.0_dp
-         if (last(k) >= first(k) .and. size(drift) >= last(k)) s%drift(k) = maxval(drift(first(k):last(k)))
+         if (last(k) >= first(k) .and. size(drift) >= last(k)) then
+            s%drift(k) = maxval(drift(first(k):last(k)))
+         end if
          if (s%by_deck) then
             s%lam_from(k) = lam(first(k))           ! lam(1) is the factor before increment 1
             s%lam_to(k) = lam(last(k) + 1)
@@ -406,11 +426,14 @@ contains
       character(len=16) :: b
       integer :: k
       write (u, '(/a)') ' '//repeat('=', 78)
-      write (u, '(a,i0,a)') ' SUMMARY OF THE RUN (load stages follow the factor of load case ', s%icase, ')'
-      write (u, '(a)') '  stage   increments      load factor from -> to  kind       solutions  worst drift'
+      write (u, '(a,i0,a)') ' SUMMARY OF THE RUN (load stages follow the factor of load case ', &
+            s%icase, ')'
+      write (u, '(a)') '  stage   increments      load factor from -> to  kind       solutions  &
+      &worst drift'
       do k = 1, size(s%first)
          if (s%by_deck) then
-            write (u, '(i7,i7,a,i6,2x,es12.4,a,es12.4,2x,a,i11,es13.3)') k, s%first(k), ' -', s%last(k), &
+            write (u, '(i7,i7,a,i6,2x,es12.4,a,es12.4,2x,a,i11,es13.3)') k, s%first(k), ' -', &
+                  s%last(k), &
                s%lam_from(k), ' ->', s%lam_to(k), dname(s%direction(k)), s%solutions(k), s%drift(k)
          else
             write (u, '(i7,i7,a,i6,2x,a,i11,es13.3)') k, s%first(k), ' -', s%last(k), &
@@ -420,30 +443,38 @@ contains
       if (s%contact) then
          write (u, '(a,i0,a)') ' The interface at the end (increment ', s%nstep, '):'
          if (s%peak_pair > 0) then
-            write (u, '(a,es12.4,1x,a,a,i0,a,es12.4,a,es12.4,a)') '  peak pressure       ', s%peak_pressure, &
+            write (u, '(a,es12.4,1x,a,a,i0,a,es12.4,a,es12.4,a)') '  peak pressure       ', &
+                  s%peak_pressure, &
                s%stress_unit, ' at pair ', s%peak_pair, ' (', s%peak_xy(1), ',', s%peak_xy(2), ')'
          else
             write (u, '(a)') '  peak pressure        none: no pair is closed'
          end if
-         write (u, '(a,es12.4,1x,a,a,i0,a,i0,a,es12.4,1x,a)') '  contact width       ', s%width, s%length_unit, &
+         write (u, '(a,es12.4,1x,a,a,i0,a,i0,a,es12.4,1x,a)') '  contact width       ', s%width, &
+               s%length_unit, &
             ' (', s%nclosed, ' of ', s%npair, ' pairs closed), area', s%area, s%length_unit//'2'
          write (u, '(a,es12.4,1x,a)') '  approach            ', s%approach, s%length_unit
-         write (u, '(a,es12.4,a,es12.4,1x,a)') '  total force normal  ', s%force_n, ', tangential', s%force_t, &
+         write (u, '(a,es12.4,a,es12.4,1x,a)') '  total force normal  ', s%force_n, &
+               ', tangential', s%force_t, &
             s%force_unit
          write (u, '(a,i0,a,i0,a)') '  slipping pairs       ', s%nslip, ' of ', s%nclosed, ' closed'
          if (s%unloaded) then
-            write (u, '(a,es12.4,1x,a,a,i0,a)') '  residual closure    ', s%residual_closure, s%length_unit, &
+            write (u, '(a,es12.4,1x,a,a,i0,a)') '  residual closure    ', s%residual_closure, &
+                  s%length_unit, &
                ' (permanent set after unloading: largest max(u_A - c_n2 p_A^m2, 0) of ', &
                s%nunloaded, ' pair(s))'
          end if
-         if (s%nbeyond > 0) write (u, '(a,i0,a,i0,a,es12.4,a,es12.4,1x,a,a)') '  unloading law        ', s%nbeyond, &
-            ' pair(s) reversed beyond the law''s admissible range; the farthest: pair ', s%beyond_pair, ', p_A ', &
+         if (s%nbeyond > 0) write (u, '(a,i0,a,i0,a,es12.4,a,es12.4,1x,a,a)') &
+               '  unloading law        ', s%nbeyond, &
+            ' pair(s) reversed beyond the law''s admissible range; the farthest: pair ', &
+            s%beyond_pair, ', p_A ', &
             s%beyond_pa, ' > p*', s%beyond_pstar, s%stress_unit, ' (u_res taken as max(u_res, 0))'
-         write (u, '(a,es12.4,a,i0,a)') '  worst law drift     ', s%worst_drift, ' (increment ', s%worst_drift_step, ')'
+         write (u, '(a,es12.4,a,i0,a)') '  worst law drift     ', s%worst_drift, ' (increment ', &
+               s%worst_drift_step, ')'
       end if
       if (len(s%estimate) > 0) write (u, '(a)') s%estimate
       write (b, '(f12.2)') seconds
-      write (u, '(a,i0,a,i0,a)') ' ', s%solutions_total, ' solutions in ', s%nstep, ' increments, '// &
+      write (u, '(a,i0,a,i0,a)') ' ', s%solutions_total, ' solutions in ', s%nstep, &
+            ' increments, '// &
          trim(adjustl(b))//' s'
       write (u, '(a)') ' '//repeat('=', 78)
    end subroutine write_run_summary
@@ -482,7 +513,8 @@ contains
          line = line//trim(b)//merge(' pairs', ' pair ', cf%zone_pairs(k) /= 1)
          write (b, '(f0.1)') 100.0_dp*cf%zone_jump(k)
          if (b(1:1) == '.') b = '0'//trim(b)
-         line = trim(line)//', largest pressure jump between neighbouring pairs '//trim(b)//' % of the peak'
+         line = trim(line)//', largest pressure jump between neighbouring pairs '//trim(b)// &
+               ' % of the peak'
       end do
    end function error_estimate_line
 
@@ -513,21 +545,27 @@ contains
       real(dp), allocatable :: dn(:), dt(:)
       integer :: i, ic
       call unit_names(m, s)
-      write (u, '(a)') ' Energy dissipated by the contact laws, cumulative ('//s%force_unit//' x '//s%length_unit//'):'
+      write (u, '(a)') ' Energy dissipated by the contact laws, cumulative ('//s%force_unit// &
+            ' x '//s%length_unit//'):'
       call dissipation_parts(m, cf, dn, dt)
       do i = 1, size(cf%dissipated_energy)
-         write (u, '(a,i0,a,es12.4,a,es12.4,a,es12.4)') '  interface ', i, ': total', cf%dissipated_energy(i), &
+         write (u, '(a,i0,a,es12.4,a,es12.4,a,es12.4)') '  interface ', i, ': total', &
+               cf%dissipated_energy(i), &
             ', normal hysteresis', dn(i), ', tangential (friction)', dt(i)
       end do
       if (tab%ncycle > 0) then
          write (u, '(a,i0,a)') ' Load cycles of the history: ', tab%ncycle, &
-            ' (energy per cycle; amplitudes are half ranges of the interface''s total F_T and mean u_T)'
-         write (u, '(a)') '  cycle  increments    iface      energy  F_T amplitude  slip amplitude' // &
+            ' (energy per cycle; amplitudes are half ranges of the interface''s total F_T and mean &
+            &u_T)'
+         write (u, '(a)') '  cycle  increments    iface      energy  F_T amplitude  slip &
+         &amplitude' // &
             '  secant stiffness  loss factor  damping ratio'
          do ic = 1, tab%ncycle
             do i = 1, size(tab%energy, 1)
-               write (u, '(i7,i7,a,i6,i8,es12.4,es15.4,es16.4,es18.4,es13.4,es15.4)') ic, tab%first(ic), ' -', &
-                  tab%last(ic), i, tab%energy(i, ic), tab%force_amplitude(i, ic), tab%slip_amplitude(i, ic), &
+               write (u, '(i7,i7,a,i6,i8,es12.4,es15.4,es16.4,es18.4,es13.4,es15.4)') ic, &
+                     tab%first(ic), ' -', &
+                  tab%last(ic), i, tab%energy(i, ic), tab%force_amplitude(i, ic), &
+                  tab%slip_amplitude(i, ic), &
                   tab%secant_stiffness(i, ic), tab%loss_factor(i, ic), tab%damping_ratio(i, ic)
             end do
          end do
@@ -539,7 +577,8 @@ contains
    pure subroutine dissipation_parts(m, cf, dn, dt)
       type(model_t), intent(in) :: m
       type(contact_fields_t), intent(in) :: cf      !! contact fields (dissipated_energy allocated)
-      real(dp), allocatable, intent(out) :: dn(:), dt(:)   !! (niface) normal, tangential [force x length]
+      real(dp), allocatable, intent(out) :: dn(:), dt(:)   !! (niface) normal, tangential
+                                                           !! [force x length]
       integer :: i, j
       allocate (dn(size(cf%dissipated_energy)), dt(size(cf%dissipated_energy)))
       do i = 1, size(cf%dissipated_energy)

@@ -35,12 +35,14 @@ module xdmf_writer
    !> Element kinds in the order of `ncells` (and of the /mesh/cells_* datasets).
    character(len=5), parameter :: CELL_NAMES(4) = ['tri3 ', 'quad4', 'quad8', 'quad9']
    integer, parameter :: CELL_NNODE(4) = [3, 4, 8, 9]
-   character(len=15), parameter :: XDMF_TYPE(4) = [character(len=15) :: 'Triangle', 'Quadrilateral', &
+   character(len=15), parameter :: XDMF_TYPE(4) = [character(len=15) :: 'Triangle', &
+                                                   'Quadrilateral', &
                                                    'Quadrilateral_8', 'Quadrilateral_9']
    !> XDMF cell codes in a Mixed topology array.
    integer, parameter :: XDMF_CELL_CODE(4) = [4, 5, 37, 35]
    !> Datasets of /increments/NNNNN/contact shown on the contact grid (same names).
-   character(len=17), parameter :: CONTACT_ATTRIBUTES(11) = [character(len=17) :: 'pressure', 'shear', &
+   character(len=17), parameter :: CONTACT_ATTRIBUTES(11) = &
+         [character(len=17) :: 'pressure', 'shear', &
       'closure', 'slip', 'slip_irreversible', 'force_normal', 'force_tangential', 'friction', &
       'resolution', 'normal_state', 'tangential_state']
    !> The integer ones among them (state codes).
@@ -69,7 +71,8 @@ contains
       character(len=*), intent(in) :: h5_path       !! the HDF5 result file (referenced by its name)
       integer, intent(in) :: npoin                  !! nodes
       integer, intent(in) :: ncells(4)              !! elements of each kind (CELL_NAMES)
-      integer, intent(in) :: nmixed                 !! length of /mesh/cells_mixed (0 if not written)
+      integer, intent(in) :: nmixed                 !! length of /mesh/cells_mixed
+                                                    !! (0 if not written)
       integer, intent(in) :: incs(:)                !! finished increments
       real(dp), intent(in) :: lambda(:, :)          !! (ncase, size(incs)) load factors
       integer, intent(out) :: ierr                  !! 0, or the iostat of a failed write
@@ -87,7 +90,8 @@ contains
       if (np > 0) pairs = pair_cells(np)
       ! write to a temporary file, then rename: a reader never sees half a file
       tmp = path//'.tmp'
-      open (newunit=u, file=tmp, status='replace', action='write', access='stream', form='formatted', &
+      open (newunit=u, file=tmp, status='replace', action='write', access='stream', &
+            form='formatted', &
             iostat=ierr)
       if (ierr /= 0) return
       write (u, '(a)', iostat=ierr) '<?xml version="1.0" ?>'//nl// &
@@ -105,7 +109,8 @@ contains
                body_grid(h5, grp, npoin, sum(ncells), topo, lambda(:, i), '', 'bodies')//nl// &
                contact_grid(h5, grp, np, pairs, lambda(:, i))//nl//'      </Grid>'
          else
-            write (u, '(a)', iostat=ierr) body_grid(h5, grp, npoin, sum(ncells), topo, lambda(:, i), &
+            write (u, '(a)', iostat=ierr) body_grid(h5, grp, npoin, sum(ncells), topo, lambda(:, &
+                                                                                              i), &
                '        <Time Value="'//itoa(incs(i))//'" />'//nl, 'increment '//trim(grp))
          end if
       end do
@@ -143,12 +148,15 @@ contains
       if (count(ncells > 0) == 1) then
          s = '        <Topology TopologyType="'//trim(XDMF_TYPE(kind_used))// &
              '" NumberOfElements="'//itoa(ncells(kind_used))//'">'//nl// &
-             '          <DataItem Dimensions="'//itoa(ncells(kind_used))//' '//itoa(CELL_NNODE(kind_used))// &
+             '          <DataItem Dimensions="'//itoa(ncells(kind_used))//' '// &
+             itoa(CELL_NNODE(kind_used))// &
              '" NumberType="Int" Precision="4" Format="HDF">'//h5//':/mesh/cells_'// &
              trim(CELL_NAMES(kind_used))//'</DataItem>'//nl//'        </Topology>'
       else
-         s = '        <Topology TopologyType="Mixed" NumberOfElements="'//itoa(sum(ncells))//'">'//nl// &
-             '          <DataItem Dimensions="'//itoa(nmixed)//'" NumberType="Int" Precision="4" '// &
+         s = '        <Topology TopologyType="Mixed" NumberOfElements="'//itoa(sum(ncells))// &
+               '">'//nl// &
+             '          <DataItem Dimensions="'//itoa(nmixed)// &
+             '" NumberType="Int" Precision="4" '// &
              'Format="HDF">'//h5//':/mesh/cells_mixed</DataItem>'//nl//'        </Topology>'
       end if
    end function body_topology
@@ -161,18 +169,23 @@ contains
       integer, intent(in) :: nelem                  !! elements (cells)
       character(len=*), intent(in) :: topo          !! the Topology element
       real(dp), intent(in) :: lambda(:)             !! load factors of the increment
-      character(len=*), intent(in) :: time          !! the Time element ('' inside a spatial collection)
+      character(len=*), intent(in) :: time          !! the Time element ('' inside
+                                                    !! a spatial collection)
       character(len=*), intent(in) :: name          !! the grid's name
       character(len=:), allocatable :: s
       s = '      <Grid Name="'//name//'" GridType="Uniform">'//nl//time//topo//nl// &
           '        <Geometry GeometryType="XY">'//nl// &
           '          '//hdf_item(h5, '/mesh/coordinates', itoa(npoin)//' 2', .false.)//nl// &
           '        </Geometry>'//nl// &
-          attribute('displacement', 'Vector', hdf_item(h5, '/increments/'//trim(grp)//'/displacement_xyz', &
+          attribute('displacement', 'Vector', hdf_item(h5, &
+                                                       '/increments/'//trim(grp)// &
+                                                       '/displacement_xyz', &
                                                        itoa(npoin)//' 3', .false.))//nl// &
           attribute('stress', 'Matrix', hdf_item(h5, '/increments/'//trim(grp)//'/stress_nodal', &
                                                  itoa(npoin)//' 4', .false.))//nl// &
-          attribute('error_indicator', 'Scalar', hdf_item(h5, '/increments/'//trim(grp)//'/error_indicator', &
+          attribute('error_indicator', 'Scalar', hdf_item(h5, &
+                                                          '/increments/'//trim(grp)// &
+                                                          '/error_indicator', &
                                                           itoa(nelem), .false.), 'Cell')//nl// &
           load_factor_attribute(lambda)//nl//'      </Grid>'
    end function body_grid
@@ -195,7 +208,8 @@ contains
           '        </Geometry>'
       do k = 1, size(CONTACT_ATTRIBUTES)
          s = s//nl//attribute(trim(CONTACT_ATTRIBUTES(k)), 'Scalar', &
-                              hdf_item(h5, '/increments/'//trim(grp)//'/contact/'//trim(CONTACT_ATTRIBUTES(k)), &
+                              hdf_item(h5, '/increments/'//trim(grp)//'/contact/'// &
+                                       trim(CONTACT_ATTRIBUTES(k)), &
                                        itoa(npair), k > size(CONTACT_ATTRIBUTES) - NINT_ATTRIBUTES))
       end do
       s = s//nl//load_factor_attribute(lambda)//nl//'      </Grid>'
@@ -225,10 +239,12 @@ contains
       logical, intent(in) :: int4                   !! 32-bit integers (else 64-bit reals)
       character(len=:), allocatable :: s
       if (int4) then
-         s = '<DataItem Dimensions="'//dims//'" NumberType="Int" Precision="4" Format="HDF">'//h5//':'//dset// &
+         s = '<DataItem Dimensions="'//dims//'" NumberType="Int" Precision="4" Format="HDF">'// &
+               h5//':'//dset// &
              '</DataItem>'
       else
-         s = '<DataItem Dimensions="'//dims//'" NumberType="Float" Precision="8" Format="HDF">'//h5//':'//dset// &
+         s = '<DataItem Dimensions="'//dims// &
+               '" NumberType="Float" Precision="8" Format="HDF">'//h5//':'//dset// &
              '</DataItem>'
       end if
    end function hdf_item
@@ -242,7 +258,8 @@ contains
       character(len=:), allocatable :: s, c
       c = 'Node'
       if (present(center)) c = center
-      s = '        <Attribute Name="'//name//'" AttributeType="'//kind//'" Center="'//c//'">'//nl// &
+      s = '        <Attribute Name="'//name//'" AttributeType="'//kind//'" Center="'//c//'">'// &
+            nl// &
           '          '//item//nl//'        </Attribute>'
    end function attribute
 
@@ -254,7 +271,8 @@ contains
       real(dp), intent(in) :: lambda(:)             !! load factors of the increment
       character(len=:), allocatable :: s
       s = '        <Attribute Name="load_factor" AttributeType="Matrix" Center="Grid">'//nl// &
-          '          <DataItem Dimensions="1 '//itoa(size(lambda))//'" NumberType="Float" Precision="8" '// &
+          '          <DataItem Dimensions="1 '//itoa(size(lambda))// &
+          '" NumberType="Float" Precision="8" '// &
           'Format="XML">'//factors(lambda)//'</DataItem>'//nl//'        </Attribute>'
    end function load_factor_attribute
 

@@ -18,7 +18,8 @@ module contact_spec
 
    !> A surface as the deck gives it (SURFACE card): a set name, or a list of nodes.
    type :: surface_spec_t
-      character(len=:), allocatable :: set_name   !! node or edge set (columns 21-); unallocated: a node list
+      character(len=:), allocatable :: set_name   !! node or edge set (columns 21-);
+                                                  !! unallocated: a node list
       integer, allocatable :: nodes(:)            !! the listed nodes (data cards after SURFACE)
       integer :: line = 0                         !! deck line of the SURFACE card
       logical :: given = .false.
@@ -39,7 +40,8 @@ module contact_spec
 
    !> What the deck says about one interface, before the pairs are built.
    type :: iface_spec_t
-      type(interface_t) :: law                   !! law, constants in input units (the *_in fields), options
+      type(interface_t) :: law                   !! law, constants in input units
+                                                 !! (the *_in fields), options
       type(surface_spec_t) :: surf(2)            !! A, B
       type(pair_spec_t), allocatable :: pairs(:) !! explicit pairs (PAIRS)
       logical :: have_normal = .false.           !! a NORMAL card was given
@@ -52,7 +54,8 @@ module contact_spec
    !> The CONTACT block.
    type :: contact_spec_t
       logical :: given = .false.       !! the deck has a CONTACT block and it was read
-      logical :: complete = .false.    !! read without errors (nor any before it): ready to be defined
+      logical :: complete = .false.    !! read without errors (nor any
+                                       !! before it): ready to be defined
       integer :: line = 0              !! deck line of the CONTACT keyword
       type(iface_spec_t), allocatable :: ifaces(:)
       type(rigid_body_t), allocatable :: rigids(:)

@@ -23,7 +23,8 @@ module contact_types
              RIGID_POLYLINE, RIGID_CIRCLE, law_name, matching_name, rigid_shape_name
 
    integer, parameter :: LAW_ROUGH = 1             !! the paper's rough interface (springs)
-   integer, parameter :: LAW_IDEAL = 2             !! smooth contact with Coulomb friction (reference)
+   integer, parameter :: LAW_IDEAL = 2             !! smooth contact with Coulomb
+                                                   !! friction (reference)
 
    integer, parameter :: FRICTION_NONE = 0         !! no tangential stiffness, no friction
    integer, parameter :: FRICTION_COULOMB = 1      !! constant mu
@@ -33,27 +34,33 @@ module contact_types
    integer, parameter :: UNITS_N_UM = 2            !! cn in µm/(N/mm²)^m
    integer, parameter :: UNITS_MODEL = 3           !! constants already in model units
 
-   integer, parameter :: UPDATE_EXPLICIT = 1       !! the paper: F += K dU with K from the previous increment
-   integer, parameter :: UPDATE_RETURN = 2         !! return to the curves, repeat until in equilibrium
+   integer, parameter :: UPDATE_EXPLICIT = 1       !! the paper: F += K dU with K
+                                                   !! from the previous increment
+   integer, parameter :: UPDATE_RETURN = 2         !! return to the curves, repeat
+                                                   !! until in equilibrium
 
    integer, parameter :: SLIP_IRREVERSIBLE = 1     !! v_e from all irreversible slip (SPEC §2.3 a)
    integer, parameter :: SLIP_GROSS = 2            !! v_e from gross slip only (SPEC §2.3 b)
 
-   integer, parameter :: NEWCLOSED_SECANT = 1      !! a newly closed pair: secant of its penetration (SPEC §4.3)
-   integer, parameter :: NEWCLOSED_TANGENT = 2     !! ... or the virgin tangent at the floor pressure
+   integer, parameter :: NEWCLOSED_SECANT = 1      !! a newly closed pair: secant
+                                                   !! of its penetration (SPEC §4.3)
+   integer, parameter :: NEWCLOSED_TANGENT = 2     !! ... or the virgin tangent
+                                                   !! at the floor pressure
 
    ! What the master side (B) of a pair is: a node (the paper's node-to-node
    ! spring), a point on an edge of body B (node-to-segment), or a point of a
    ! rigid body's profile, which moves with the body's reference node.
    integer, parameter :: PAIR_NODE = 0             !! node a - node b
    integer, parameter :: PAIR_SEGMENT = 1          !! node a - point of an edge of B (2 or 3 nodes)
-   integer, parameter :: PAIR_RIGID = 2            !! node a - point of a rigid profile (reference node)
+   integer, parameter :: PAIR_RIGID = 2            !! node a - point of a rigid
+                                                   !! profile (reference node)
    integer, parameter :: MAX_PAIR_NODES = 8        !! slave node + up to 7 master nodes
 
    integer, parameter :: MATCH_NODE = 1            !! node-to-node pairing (the paper's default)
    integer, parameter :: MATCH_SEGMENT = 2         !! node-to-segment pairing (non-matching meshes)
 
-   integer, parameter :: RIGID_POLYLINE = 1        !! straight segments (FLAT is a two-point polyline)
+   integer, parameter :: RIGID_POLYLINE = 1        !! straight segments (FLAT
+                                                   !! is a two-point polyline)
    integer, parameter :: RIGID_CIRCLE = 2          !! circle (a sphere in axisymmetry)
 
    !> kgf/cm² per N/mm² (1 kgf/cm² = 0.0980665 N/mm²).
@@ -73,8 +80,10 @@ module contact_types
       real(dp) :: m = 0.0_dp
       real(dp) :: cn2 = 0.0_dp         !! unloading: u = u_A - cn2 (p_A^m2 - p^m2)
       real(dp) :: m2 = 0.0_dp
-      real(dp) :: p_reversal_max = huge(1.0_dp) !! largest reversal pressure of an admissible unloading branch
-                                                !! (contact_laws' admissible_reversals, set by contact_definition)
+      real(dp) :: p_reversal_max = huge(1.0_dp) !! largest reversal pressure of
+                                                !! an admissible unloading branch
+                                                !! (contact_laws' admissible_reversals, set by
+                                                !! contact_definition)
       real(dp) :: s = 0.0_dp           !! k_T^e = p^S / r_t
       real(dp), allocatable :: r_t(:)  !! per pair of this interface (R depends on nu when computed)
       ! tangential law and friction
@@ -88,7 +97,8 @@ module contact_types
       ! pairing
       real(dp) :: tol = -1.0_dp        !! pairing tolerance (< 0: default from the mesh size)
       integer :: matching = MATCH_NODE !! node-to-node or node-to-segment (surface B only)
-      logical :: sides_swapped = .false. !! MATCHING SEGMENT built from B's nodes on A's edges (A the coarser)
+      logical :: sides_swapped = .false. !! MATCHING SEGMENT built from B's
+                                         !! nodes on A's edges (A the coarser)
       integer :: rigid = 0             !! index of the rigid body that is side B (0: a surface)
       integer :: line = 0              !! deck line of the INTERFACE (or first) card
    end type interface_t
@@ -123,16 +133,22 @@ module contact_types
       integer :: iface = 1
       integer :: kind = PAIR_NODE           !! PAIR_NODE, PAIR_SEGMENT or PAIR_RIGID
       integer :: nn = 2                     !! nodes of the element: a, then the master nodes
-      integer :: nodes(MAX_PAIR_NODES) = 0  !! (a, b) or (a, reference node) or (a, master nodes of B)
-      real(dp) :: w(MAX_PAIR_NODES) = [1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]  !! w(2:nn): weights of b
+      integer :: nodes(MAX_PAIR_NODES) = 0  !! (a, b) or (a, reference node)
+                                            !! or (a, master nodes of B)
+      real(dp) :: w(MAX_PAIR_NODES) = [1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, &
+                                       0.0_dp]  !! w(2:nn): weights of b
       real(dp) :: t(2) = [1.0_dp, 0.0_dp]   !! unit tangent (cos alpha, sin alpha), eq. (3.31)
       real(dp) :: n(2) = [0.0_dp, 1.0_dp]   !! unit normal, n = (-sin alpha, cos alpha)
       real(dp) :: g0 = 0.0_dp               !! initial gap along n, eq. (3.8)
-      real(dp) :: area = 0.0_dp             !! lumped contact area A_j, eqs. (3.22), (3.26), (A1)-(A6)
-      real(dp) :: position(2) = 0.0_dp      !! coordinates of point b (node b for node-to-node; for output)
+      real(dp) :: area = 0.0_dp             !! lumped contact area A_j, eqs.
+                                            !! (3.22), (3.26), (A1)-(A6)
+      real(dp) :: position(2) = 0.0_dp      !! coordinates of point b (node
+                                            !! b for node-to-node; for output)
       ! scales of the ideal (augmented Lagrangian) contact, from the definition
-      real(dp) :: length = 0.0_dp           !! length of the contact elements at the pair (mean of its edges)
-      real(dp) :: share = 0.0_dp            !! equal share of the areas of those edges (> 0 also on the axis)
+      real(dp) :: length = 0.0_dp           !! length of the contact elements
+                                            !! at the pair (mean of its edges)
+      real(dp) :: share = 0.0_dp            !! equal share of the areas of those
+                                            !! edges (> 0 also on the axis)
       real(dp) :: estar = 0.0_dp            !! contact modulus 1/((1-nu_a^2)/E_a + (1-nu_b^2)/E_b)
       integer :: line = 0                   !! deck line that created the pair
    end type contact_pair_t
@@ -145,16 +161,20 @@ module contact_types
       logical :: first_iterate = .false.    !! iterate the first increment with the secant
       integer :: max_repeats = 30           !! cap on repeats of one increment
       real(dp) :: p_start = -1.0_dp         !! starting pressure p_m (< 0: from the first increment)
-      integer :: n_start = 0                !! close the n_start pairs of smallest gap initially (0: by gap)
-      real(dp) :: gap_tol = -1.0_dp         !! pairs with g0 <= gap_tol start closed (< 0: 1e-9 x model size)
+      integer :: n_start = 0                !! close the n_start pairs of smallest
+                                            !! gap initially (0: by gap)
+      real(dp) :: gap_tol = -1.0_dp         !! pairs with g0 <= gap_tol start
+                                            !! closed (< 0: 1e-9 x model size)
       real(dp) :: tol_residual = 1.0e-10_dp !! relative out-of-balance force accepted by RETURN
       real(dp) :: tol_displacement = 1.0e-8_dp  !! relative last correction accepted by RETURN
-      logical :: modified = .false.         !! RETURN with the stiffness of the first solution (modified Newton)
+      logical :: modified = .false.         !! RETURN with the stiffness of the
+                                            !! first solution (modified Newton)
       real(dp) :: p_min_ratio = 1.0e-3_dp   !! floor of a newly closed pair's secant pressure, x p_m
       integer :: newly_closed = NEWCLOSED_SECANT   !! stiffness rule for a pair that closes
       ! ideal contact (augmented Lagrangian, SPEC reference model)
       real(dp) :: aug_factor = 100.0_dp     !! penalty per unit area = aug_factor E* / length
-      real(dp) :: aug_tol = 1.0e-6_dp       !! penetration and stick drift accepted, x smallest length
+      real(dp) :: aug_tol = 1.0e-6_dp       !! penetration and stick drift
+                                            !! accepted, x smallest length
       logical :: repeats_given = .false.    !! REPEATS card given (else a default per law)
    end type contact_options_t
 

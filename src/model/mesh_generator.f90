@@ -73,7 +73,8 @@ contains
       if (allocated(m%matno)) deallocate (m%matno)
       if (allocated(m%node_line)) deallocate (m%node_line)
       if (allocated(m%elem_line)) deallocate (m%elem_line)
-      allocate (m%coord(2, m%npoin), m%lnods(MAX_NODE, m%nelem), m%nnode_e(m%nelem), m%matno(m%nelem), &
+      allocate (m%coord(2, m%npoin), m%lnods(MAX_NODE, m%nelem), m%nnode_e(m%nelem), &
+                m%matno(m%nelem), &
                 m%node_line(m%npoin), m%elem_line(m%nelem))
       m%lnods = 0
       m%nnode_e = nnode

@@ -104,10 +104,13 @@ module model
       integer, allocatable :: nnode_e(:)     !! nodes of each element
       integer, allocatable :: matno(:)       !! material of each element
       integer, allocatable :: node_line(:)   !! deck line of each node card
-      integer, allocatable :: elem_line(:)   !! deck line of each element card (.msh line with a MESH block)
+      integer, allocatable :: elem_line(:)   !! deck line of each element card
+                                             !! (.msh line with a MESH block)
       integer :: restraints_line = 0         !! deck line of the RESTRAINTS keyword (for messages)
-      integer, allocatable :: node_tag(:)    !! (npoin) gmsh node tags (MESH block); unallocated for deck meshes
-      character(len=:), allocatable :: mesh_file  !! .msh file of a MESH block ('' or unallocated: the deck)
+      integer, allocatable :: node_tag(:)    !! (npoin) gmsh node tags (MESH block);
+                                             !! unallocated for deck meshes
+      character(len=:), allocatable :: mesh_file  !! .msh file of a MESH block (''
+                                                  !! or unallocated: the deck)
       ! materials, boundary conditions, loads
       type(material_t), allocatable :: mats(:)
       type(restraint_t), allocatable :: fixes(:)

@@ -47,16 +47,20 @@ contains
       p%cut = m%coord(ax, p%nodes(1))
       do i = 2, size(p%nodes)
          if (abs(m%coord(ax, p%nodes(i)) - p%cut) > tol) then
-            call err('node '//itoa(p%nodes(i))//' lies at '//trim(merge('x', 'y', ax == 1))//' = '// &
-                     rtoa(m%coord(ax, p%nodes(i)))//', off the cut '//trim(merge('x', 'y', ax == 1))//' = '// &
-                     rtoa(p%cut)//' of node '//itoa(p%nodes(1))//' (a section is a straight cut across the axis)')
+            call err('node '//itoa(p%nodes(i))//' lies at '//trim(merge('x', 'y', ax == 1))// &
+                     ' = '// &
+                     rtoa(m%coord(ax, p%nodes(i)))//', off the cut '// &
+                     trim(merge('x', 'y', ax == 1))//' = '// &
+                     rtoa(p%cut)//' of node '//itoa(p%nodes(1))// &
+                     ' (a section is a straight cut across the axis)')
             return
          end if
       end do
       do k = 1, size(m%fixes)
          if (.not. any(p%nodes == m%fixes(k)%node)) cycle
          if (m%fixes(k)%fixed(ax)) then
-            call err('node '//itoa(m%fixes(k)%node)//' of the section is restrained along the axis (RESTRAINTS, '// &
+            call err('node '//itoa(m%fixes(k)%node)// &
+                     ' of the section is restrained along the axis (RESTRAINTS, '// &
                      'line '//itoa(m%fixes(k)%line)//'): the section must be free to open')
             return
          end if
@@ -64,7 +68,8 @@ contains
       do k = 1, size(m%pretensions)
          if (m%pretensions(k)%line == p%line .or. .not. allocated(m%pretensions(k)%copies)) cycle
          if (any([(any(m%pretensions(k)%nodes == p%nodes(i)), i=1, size(p%nodes))])) then
-            call err('the section shares nodes with section "'//m%pretensions(k)%name//'" (line '// &
+            call err('the section shares nodes with section "'//m%pretensions(k)%name// &
+                     '" (line '// &
                      itoa(m%pretensions(k)%line)//')')
             return
          end if
@@ -92,9 +97,12 @@ contains
       do i = 1, size(p%nodes)
          ip = p%nodes(i)
          if (.not. (plus(i) .and. minus(i))) then
-            call err('node '//itoa(ip)//' has elements on '//trim(merge('the -axis side only', 'the +axis side only', &
-                     minus(i)))//trim(merge(' (no element at all)', '                    ', .not. (plus(i) .or. &
-                     minus(i))))//': a section cuts through a body, every node between elements on both sides')
+            call err('node '//itoa(ip)//' has elements on '// &
+                     trim(merge('the -axis side only', 'the +axis side only', &
+                     minus(i)))//trim(merge(' (no element at all)', '                    ', &
+                                            .not. (plus(i) .or. &
+                     minus(i))))//': a section cuts through a body, every node between elements on &
+                     &both sides')
             return
          end if
       end do
@@ -103,7 +111,8 @@ contains
    contains
       subroutine err(msg)
          character(len=*), intent(in) :: msg
-         call errors%add('E-PRETENSION', 'LOADS/PRETENSION: section "'//p%name//'": '//msg, file=m%deck_file, &
+         call errors%add('E-PRETENSION', 'LOADS/PRETENSION: section "'//p%name//'": '//msg, &
+                         file=m%deck_file, &
                          line=p%line, col=11)
       end subroutine err
    end subroutine check_section
@@ -125,7 +134,8 @@ contains
       p%ref = np + ns + 1
       ! nodes: the copies at the originals, the reference node at the middle of the section
       m%coord = reshape([m%coord, m%coord(:, p%nodes), &
-                         0.5_dp*(minval(m%coord(:, p%nodes), dim=2) + maxval(m%coord(:, p%nodes), dim=2))], &
+                         0.5_dp*(minval(m%coord(:, p%nodes), dim=2) + &
+                                 maxval(m%coord(:, p%nodes), dim=2))], &
                         [2, np + ns + 1])
       m%coord(ax, p%ref) = p%cut
       m%node_line = [m%node_line, (p%line, i=1, ns + 1)]
@@ -147,15 +157,21 @@ contains
          do k = 1, size(m%fixes)
             if (m%fixes(k)%node /= p%nodes(i) .or. .not. m%fixes(k)%fixed(tr)) cycle
             fixed_t = .true.
-            addfix = [addfix, restraint_t(node=p%copies(i), fixed=merge([.true., .false.], [.false., .true.], tr == 1), &
-                                          value=m%fixes(k)%value*merge([1.0_dp, 0.0_dp], [0.0_dp, 1.0_dp], tr == 1), &
+            addfix = [addfix, restraint_t(node=p%copies(i), &
+                                          fixed=merge([.true., .false.], [.false., .true.], &
+                                                      tr == 1), &
+                                          value=m%fixes(k)%value*merge([1.0_dp, 0.0_dp], &
+                                                                       [0.0_dp, 1.0_dp], tr == 1), &
                                           icase=m%fixes(k)%icase, line=m%fixes(k)%line)]
             exit
          end do
-         if (.not. fixed_t) ties = reshape([ties, p%nodes(i), p%copies(i), tr], [3, size(ties, 2) + 1])
+         if (.not. fixed_t) then
+            ties = reshape([ties, p%nodes(i), p%copies(i), tr], [3, size(ties, 2) + 1])
+         end if
       end do
       ! the reference node moves along the axis only, loaded by -F (tension F across the cut)
-      addfix = [addfix, restraint_t(node=p%ref, fixed=merge([.true., .false.], [.false., .true.], tr == 1), &
+      addfix = [addfix, restraint_t(node=p%ref, fixed=merge([.true., .false.], [.false., .true.], &
+                                                            tr == 1), &
                                     line=p%line)]
       m%fixes = [m%fixes, addfix]
       m%ties = reshape([m%ties, ties], [3, size(m%ties, 2) + size(ties, 2)])

@@ -26,7 +26,8 @@ module renumber
    public :: rcm_order, is_permutation, RENUMBER_AUTO, RENUMBER_RCM, RENUMBER_NONE
 
    !> Renumbering choices of the deck (OPTIONS RENUMBER).
-   character(len=*), parameter :: RENUMBER_AUTO = 'AUTO'   !! RCM for the skyline solver, none otherwise
+   character(len=*), parameter :: RENUMBER_AUTO = 'AUTO'   !! RCM for the skyline
+                                                           !! solver, none otherwise
    character(len=*), parameter :: RENUMBER_RCM = 'RCM'
    character(len=*), parameter :: RENUMBER_NONE = 'NONE'
 

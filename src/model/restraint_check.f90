@@ -78,7 +78,8 @@ contains
 
       allocate (body(m%npoin))
       call find_bodies(m, links, body, nbody)
-      allocate (gram(3, 3, nbody), xc(2, nbody), lsize(nbody), cnt(nbody), lowest(nbody), nfixz(nbody))
+      allocate (gram(3, 3, nbody), xc(2, nbody), lsize(nbody), cnt(nbody), lowest(nbody), &
+                nfixz(nbody))
       gram = 0.0_dp
       xc = 0.0_dp
       cnt = 0

@@ -8,7 +8,8 @@
 !!
 !!     solver, solver_choice, solver_reason   solver_factory (plan_run), before the set-up
 !!     ordering, ordering_reason              plan_run (from OPTIONS RENUMBER and the solver)
-!!     scheme, condense, automatic increments plan_run (from CONTACT SCHEME, OPTIONS CONDENSE, AUTOINC)
+!!     scheme, condense, automatic increments plan_run (from CONTACT SCHEME, OPTIONS CONDENSE,
+!!                                            AUTOINC)
 !!     contact_system                         contact_system_factory (contact_system_kind), once the
 !!                                            equations and the contact equations are known
 !!
@@ -27,33 +28,41 @@ module run_plan
    public :: SYSTEM_FULL, SYSTEM_CONDENSED, SYSTEM_MUMPS_SCHUR
    public :: ORDERING_RCM, ORDERING_USER
    public :: SCHEME_NONE, SCHEME_INCREMENTAL, SCHEME_NEWTON, SCHEME_MODIFIED
-   public :: solver_code, solver_name, choice_name, condense_code, system_name, ordering_name, scheme_name, &
+   public :: solver_code, solver_name, choice_name, condense_code, system_name, ordering_name, &
+         scheme_name, &
              scheme_code, resolve_ordering, plan_summary
 
    !> Linear solver of the bodies (deck CONTROL SOLVER, -s, or the automatic choice).
-   integer, parameter :: SOLVER_UNSET = 0, SOLVER_SKYLINE = 1, SOLVER_DENSE = 2, SOLVER_UMFPACK = 3, &
+   integer, parameter :: SOLVER_UNSET = 0, SOLVER_SKYLINE = 1, SOLVER_DENSE = 2, &
+         SOLVER_UMFPACK = 3, &
                          SOLVER_MUMPS = 4
    !> Who chose the solver.
    integer, parameter :: CHOICE_DECK = 1          !! CONTROL SOLVER of the deck
    integer, parameter :: CHOICE_COMMAND_LINE = 2  !! -s / --solver
-   integer, parameter :: CHOICE_AUTOMATIC = 3     !! neither (SOLVER blank or AUTO): model size, contact, build
+   integer, parameter :: CHOICE_AUTOMATIC = 3     !! neither (SOLVER blank or AUTO):
+                                                  !! model size, contact, build
    !> The deck's request for the contact system (OPTIONS CONDENSE).
    integer, parameter :: CONDENSE_AUTO = 0, CONDENSE_ON = 1, CONDENSE_OFF = 2
    !> The contact system used (the path of the contact equations).
-   integer, parameter :: SYSTEM_FULL = 0          !! K_AB + K_c refactorized for every new set of springs
-   integer, parameter :: SYSTEM_CONDENSED = 1     !! bodies condensed onto the contact equations by n_c solves
-   integer, parameter :: SYSTEM_MUMPS_SCHUR = 2   !! the Schur complement of MUMPS's one sparse factorization
+   integer, parameter :: SYSTEM_FULL = 0          !! K_AB + K_c refactorized for
+                                                  !! every new set of springs
+   integer, parameter :: SYSTEM_CONDENSED = 1     !! bodies condensed onto the contact
+                                                  !! equations by n_c solves
+   integer, parameter :: SYSTEM_MUMPS_SCHUR = 2   !! the Schur complement of MUMPS's
+                                                  !! one sparse factorization
    !> Order of the equations (OPTIONS RENUMBER, or the solver's default).
    integer, parameter :: ORDERING_RCM = 1         !! reverse Cuthill-McKee order of the node graph
    integer, parameter :: ORDERING_USER = 2        !! the user's node order (RENUMBER NONE)
    !> Contact scheme (CONTACT SCHEME / UPDATE); SCHEME_NONE without contact pairs.
-   integer, parameter :: SCHEME_NONE = 0, SCHEME_INCREMENTAL = 1, SCHEME_NEWTON = 2, SCHEME_MODIFIED = 3
+   integer, parameter :: SCHEME_NONE = 0, SCHEME_INCREMENTAL = 1, SCHEME_NEWTON = 2, &
+         SCHEME_MODIFIED = 3
 
    !> How a run solves its model.
    type :: run_plan_t
       integer :: solver = SOLVER_UNSET                !! SOLVER_*
       integer :: solver_choice = CHOICE_DECK          !! CHOICE_*
-      character(len=:), allocatable :: solver_reason  !! why the automatic choice took it ('' otherwise)
+      character(len=:), allocatable :: solver_reason  !! why the automatic choice
+                                                      !! took it ('' otherwise)
       integer :: condense = CONDENSE_AUTO             !! CONDENSE_*: what the deck asked for
       integer :: contact_system = SYSTEM_FULL         !! SYSTEM_*: what the run uses
       integer :: ordering = ORDERING_USER             !! ORDERING_*
@@ -216,7 +225,8 @@ contains
       type(run_plan_t), intent(in) :: p
       character(len=:), allocatable :: s
       s = 'solver '//solver_name(p%solver)//' ('//choice_name(p%solver_choice)//'), equations '// &
-          ordering_name(p%ordering)//', contact system '//system_name(p%contact_system)//', scheme '// &
+          ordering_name(p%ordering)//', contact system '//system_name(p%contact_system)// &
+          ', scheme '// &
           scheme_name(p%scheme)//', increments '//trim(merge('automatic', 'fixed    ', p%autoinc))
    end function plan_summary
 end module run_plan

@@ -46,10 +46,13 @@ module condensed_system
       integer :: nc = 0                      !! contact equations
       integer, allocatable :: ceq(:)         !! their global equation numbers
       integer, allocatable :: pos(:)         !! (neq) position of an equation in ceq, 0 if none
-      integer, allocatable :: ppos(:, :)     !! (nd, npair) position of each pair dof in ceq, 0 if none
-      integer, allocatable :: cdof(:, :)     !! (3, ndof) (dof, node, position) of the nodal dofs on contact equations
+      integer, allocatable :: ppos(:, :)     !! (nd, npair) position of each
+                                             !! pair dof in ceq, 0 if none
+      integer, allocatable :: cdof(:, :)     !! (3, ndof) (dof, node, position) of
+                                             !! the nodal dofs on contact equations
       real(dp), allocatable :: kref(:, :, :) !! (nd, nd, npair) reference springs K_ref
-      real(dp), allocatable :: dk(:, :, :)   !! (nd, nd, npair) dK = K_c - K_ref of the current springs
+      real(dp), allocatable :: dk(:, :, :)   !! (nd, nd, npair) dK = K_c -
+                                             !! K_ref of the current springs
       type(contact_dense_t) :: dense         !! S_B = G^-1, and S_B + dK factorized
       ! the attempt under way
       logical :: first = .true.              !! the next solve is the attempt's first
@@ -89,12 +92,14 @@ contains
       end do
       call this%solver%factorize(status)
       if (.not. status%ok()) then
-         status%message = 'condensation: the bodies with reference springs are singular ('//status%message// &
+         status%message = 'condensation: the bodies with reference springs are singular ('// &
+               status%message// &
                           '); check the restraints'
          return
       end if
       ! where the contact equations sit (solve answers at the nodal dofs of cdof)
-      call index_contact_equations(this%peq, this%neq, this%id, this%ceq, this%pos, this%ppos, this%cdof)
+      call index_contact_equations(this%peq, this%neq, this%id, this%ceq, this%pos, this%ppos, &
+                                   this%cdof)
       this%nc = size(this%ceq)
       call this%dense%init(this%nc, size(this%peq, 1), size(this%peq, 2))
       allocate (e(this%neq))
@@ -110,8 +115,10 @@ contains
          call dpotrf('U', this%nc, this%dense%s, this%nc, info)
          if (info == 0) call dpotri('U', this%nc, this%dense%s, this%nc, info)
          if (info /= 0) then
-            call status%set(STAT_SINGULAR, 'condensation: the flexibility of the contact equations is not '// &
-                            'positive definite (LAPACK info '//itoa(info)//'); check the restraints')
+            call status%set(STAT_SINGULAR, &
+                            'condensation: the flexibility of the contact equations is not '// &
+                            'positive definite (LAPACK info '//itoa(info)// &
+                            '); check the restraints')
             return
          end if
          do j = 1, this%nc
@@ -121,7 +128,8 @@ contains
       call this%dense%prepare_projection(this%ppos, kref)
       allocate (this%dk, mold=kref)
       this%dk = 0.0_dp
-      allocate (this%w1(this%neq), this%work(this%neq), this%rsum(this%nc), this%zc(this%nc), this%xc(this%nc))
+      allocate (this%w1(this%neq), this%work(this%neq), this%rsum(this%nc), this%zc(this%nc), &
+                this%xc(this%nc))
    end subroutine condensed_prepare
 
    !> S_B + dK, dK = K_c - K_ref on the contact equations (every pair's
@@ -131,7 +139,8 @@ contains
       class(condensed_system_t), intent(inout) :: this
       real(dp), intent(in) :: kc(:, :, :)
       type(status_t), intent(inout) :: status
-      call set_contact_springs(this%dense, this%ppos, this%ceq, kc, this%kref, this%dk, 'the condensed contact system', &
+      call set_contact_springs(this%dense, this%ppos, this%ceq, kc, this%kref, this%dk, &
+                               'the condensed contact system', &
                                this%bad_eq, status)
    end subroutine condensed_set_springs
 
@@ -176,7 +185,8 @@ contains
             if (this%ppos(c, j) <= 0) cycle
             do a = 1, size(this%ppos, 1)
                if (this%ppos(a, j) <= 0) cycle
-               this%zc(this%ppos(a, j)) = this%zc(this%ppos(a, j)) + this%dk(a, c, j)*this%xc(this%ppos(c, j))
+               this%zc(this%ppos(a, j)) = this%zc(this%ppos(a, j)) + &
+                     this%dk(a, c, j)*this%xc(this%ppos(c, j))
             end do
          end do
       end do
@@ -219,6 +229,8 @@ contains
       class(condensed_system_t), intent(in) :: this
       integer(i8) :: bytes
       bytes = this%dense%memory_bytes() + (2_i8*int(this%neq, i8) + 3_i8*int(this%nc, i8))*8_i8
-      if (allocated(this%kref)) bytes = bytes + 2_i8*storage_size(this%kref, i8)/8*size(this%kref, kind=i8)
+      if (allocated(this%kref)) then
+         bytes = bytes + 2_i8*storage_size(this%kref, i8)/8*size(this%kref, kind=i8)
+      end if
    end function condensed_memory
 end module condensed_system

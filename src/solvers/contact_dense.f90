@@ -117,7 +117,8 @@ module contact_dense
       real(dp), allocatable :: kcur(:, :, :) !! (nd, nd, npair) the current springs
       real(dp), allocatable :: g0(:), r(:)   !! (n) right-hand side and residual of a refinement
       integer :: refinements = 0             !! refinement steps so far
-      integer :: fallbacks = 0               !! refinements that gave up for the direct factorization
+      integer :: fallbacks = 0               !! refinements that gave up for
+                                             !! the direct factorization
    contains
       procedure :: init => dense_init
       procedure :: prepare_projection => dense_prepare_projection
@@ -143,13 +144,17 @@ contains
       integer, intent(in) :: n, nd, npair
       integer :: q
       this%n = n
-      if (allocated(this%s)) deallocate (this%s, this%a, this%diag, this%rhs, this%ipiv, this%kc0, this%plist, &
-                                         this%mark, this%z, this%d, this%mm, this%mpiv, this%t, this%ppos, &
+      if (allocated(this%s)) deallocate (this%s, this%a, this%diag, this%rhs, this%ipiv, &
+                                         this%kc0, this%plist, &
+                                         this%mark, this%z, this%d, this%mm, this%mpiv, this%t, &
+                                         this%ppos, &
                                          this%kcur, this%g0, this%r)
       q = max(1, n/8)
       this%lowrank_max = q
-      allocate (this%s(n, n), this%a(n, n), this%diag(n), this%rhs(n, 1), this%ipiv(n), this%kc0(nd, nd, npair), &
-                this%plist(q), this%mark(n), this%z(n, q), this%d(q, q), this%mm(q, q), this%mpiv(q), this%t(q), &
+      allocate (this%s(n, n), this%a(n, n), this%diag(n), this%rhs(n, 1), this%ipiv(n), &
+                this%kc0(nd, nd, npair), &
+                this%plist(q), this%mark(n), this%z(n, q), this%d(q, q), this%mm(q, q), &
+                this%mpiv(q), this%t(q), &
                 this%ppos(nd, npair), this%kcur(nd, nd, npair), this%g0(n), this%r(n))
       this%ppos = 0
       this%kcur = 0.0_dp
@@ -242,7 +247,8 @@ contains
             if (ppos(l, j) <= 0) cycle
             do k = 1, size(ppos, 1)
                if (ppos(k, j) <= 0) cycle
-               this%d(this%mark(ppos(k, j)), this%mark(ppos(l, j))) = this%d(this%mark(ppos(k, j)), &
+               this%d(this%mark(ppos(k, j)), this%mark(ppos(l, j))) = &
+                     this%d(this%mark(ppos(k, j)), &
                   this%mark(ppos(l, j))) + (kc(k, l, j) - this%kc0(k, l, j))
             end do
          end do
@@ -261,7 +267,8 @@ contains
          call dgetrs('N', this%n, m, this%a, this%n, this%ipiv, this%z, this%n, info)
       end if
       if (info /= 0) then
-         call status%set(STAT_SOLVER, 'LAPACK solve of the contact equations: illegal argument '//itoa(-info))
+         call status%set(STAT_SOLVER, &
+                         'LAPACK solve of the contact equations: illegal argument '//itoa(-info))
          return
       end if
       ! I + D Z_p, by LU; a small pivot: refactorize instead
@@ -456,7 +463,8 @@ contains
       type(status_t), intent(inout) :: status
       integer :: info
       if (.not. this%factored) then
-         call status%set(STAT_SOLVER, 'contact system: solve without valid factors of the contact equations')
+         call status%set(STAT_SOLVER, &
+                         'contact system: solve without valid factors of the contact equations')
          return
       end if
       if (this%cholesky) then
@@ -467,7 +475,8 @@ contains
       this%rhs(:, 1) = x
       call dgetrs('N', this%n, 1, this%a, this%n, this%ipiv, this%rhs, this%n, info)
       if (info /= 0) then
-         call status%set(STAT_SOLVER, 'LAPACK solve of the contact equations: illegal argument '//itoa(-info))
+         call status%set(STAT_SOLVER, &
+                         'LAPACK solve of the contact equations: illegal argument '//itoa(-info))
          return
       end if
       x = this%rhs(:, 1)
@@ -538,7 +547,8 @@ contains
       if (.not. status%ok()) return
       if (dense%bad > 0) then
          bad_eq = ceq(dense%bad)
-         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(bad_eq)//' of '//what)
+         call status%set(STAT_SINGULAR, 'zero pivot at contact equation '//itoa(bad_eq)// &
+                         ' of '//what)
       end if
    end subroutine set_contact_springs
 end module contact_dense

@@ -122,12 +122,14 @@ module contact_projection
       logical :: stale = .false.               !! dcur differs from dfac: solves iterate
       real(dp), allocatable :: px(:), pr(:), pp(:), pq(:), pw(:)  !! (r) work of the iterations
       integer :: last_iterations = 0           !! iterations of the last solve (0: direct)
-      real(dp) :: stiffness = 0.0_dp           !! largest |D_j| / scale of K_ref,j of the current springs
+      real(dp) :: stiffness = 0.0_dp           !! largest |D_j| / scale of K_ref,j
+                                               !! of the current springs
       logical :: symmetric = .true.            !! every D_j of the current springs is symmetric
       integer :: factorizations = 0            !! factorizations of F^-1 + D so far
       integer :: iterations = 0                !! conjugate gradient iterations so far
       integer :: iterative_solves = 0          !! solves by them so far
-      logical :: disjoint = .false.            !! no two pair dofs share a contact equation (U's blocks disjoint)
+      logical :: disjoint = .false.            !! no two pair dofs share a contact
+                                               !! equation (U's blocks disjoint)
       integer :: range_solves = 0              !! solves of a right-hand side in the range of U
    contains
       procedure :: setup => projection_setup
@@ -158,7 +160,8 @@ contains
       if (allocated(this%ls)) deallocate (this%ls)
       if (allocated(this%v)) deallocate (this%v)
       if (allocated(this%finv)) deallocate (this%finv)
-      if (allocated(this%c)) deallocate (this%c, this%cdiag, this%t, this%z, this%zr, this%dcur, this%dfac, this%px, &
+      if (allocated(this%c)) deallocate (this%c, this%cdiag, this%t, this%z, this%zr, this%dcur, &
+                                         this%dfac, this%px, &
                                          this%pr, this%pp, this%pq, this%pw)
       this%factored = .false.
       this%stale = .false.
@@ -196,7 +199,8 @@ contains
             do a = 1, nd
                if (ppos(a, j) <= 0) cycle
                do col = 1, this%r
-                  f(this%qoff(j) + k, col) = f(this%qoff(j) + k, col) + this%q(a, k, j)*w(ppos(a, j), col)
+                  f(this%qoff(j) + k, col) = f(this%qoff(j) + k, col) + &
+                        this%q(a, k, j)*w(ppos(a, j), col)
                end do
             end do
          end do
@@ -210,9 +214,12 @@ contains
       end do
       call move_alloc(f, this%finv)
       allocate (this%v(this%n, this%r))
-      call dgemm('N', 'N', this%n, this%r, this%r, 1.0_dp, w, this%n, this%finv, this%r, 0.0_dp, this%v, this%n)
-      allocate (this%c(this%r, this%r), this%cdiag(this%r), this%t(this%r), this%z(this%r), this%zr(this%r), &
-                this%dcur(nd, nd, np), this%dfac(nd, nd, np), this%px(this%r), this%pr(this%r), this%pp(this%r), &
+      call dgemm('N', 'N', this%n, this%r, this%r, 1.0_dp, w, this%n, this%finv, this%r, 0.0_dp, &
+                 this%v, this%n)
+      allocate (this%c(this%r, this%r), this%cdiag(this%r), this%t(this%r), this%z(this%r), &
+                this%zr(this%r), &
+                this%dcur(nd, nd, np), this%dfac(nd, nd, np), this%px(this%r), this%pr(this%r), &
+                this%pp(this%r), &
                 this%pq(this%r), this%pw(this%r))
       this%dcur = 0.0_dp
       this%dfac = 0.0_dp
@@ -319,12 +326,17 @@ contains
                      recon = recon + this%q(a, k, j)*this%d(k, l)*this%q(b, l, j)
                   end do
                end do
-               if (.not. abs(kc(a, b, j) - recon) <= RANGE_TOL*(this%kscale(j) + abs(kc(a, b, j)))) return
+               if (.not. abs(kc(a, b, j) - recon) <= &
+                     RANGE_TOL*(this%kscale(j) + abs(kc(a, b, j)))) then
+                  return
+               end if
             end do
          end do
          do l = 1, rk
             do k = 1, l - 1
-               if (.not. abs(this%d(k, l) - this%d(l, k)) <= SYM_TOL*this%kscale(j)) symmetric = .false.
+               if (.not. abs(this%d(k, l) - this%d(l, k)) <= SYM_TOL*this%kscale(j)) then
+                  symmetric = .false.
+               end if
             end do
          end do
          this%dcur(:, :, j) = 0.0_dp
@@ -353,7 +365,8 @@ contains
       do j = 1, size(this%qrank)
          rk = this%qrank(j)
          o = this%qoff(j)
-         this%c(o + 1:o + rk, o + 1:o + rk) = this%c(o + 1:o + rk, o + 1:o + rk) + this%dcur(1:rk, 1:rk, j)
+         this%c(o + 1:o + rk, o + 1:o + rk) = this%c(o + 1:o + rk, o + 1:o + rk) + &
+               this%dcur(1:rk, 1:rk, j)
       end do
       do k = 1, this%r
          this%cdiag(k) = this%c(k, k)
@@ -461,7 +474,10 @@ contains
          do k = 1, this%qrank(j)
             this%t(this%qoff(j) + k) = 0.0_dp
             do a = 1, size(ppos, 1)
-               if (ppos(a, j) > 0) this%t(this%qoff(j) + k) = this%t(this%qoff(j) + k) + this%q(a, k, j)*x(ppos(a, j))
+               if (ppos(a, j) > 0) then
+                  this%t(this%qoff(j) + k) = this%t(this%qoff(j) + k) + &
+                        this%q(a, k, j)*x(ppos(a, j))
+               end if
             end do
          end do
       end do
@@ -513,7 +529,10 @@ contains
          do k = 1, this%qrank(j)
             this%t(this%qoff(j) + k) = 0.0_dp
             do a = 1, size(ppos, 1)
-               if (ppos(a, j) > 0) this%t(this%qoff(j) + k) = this%t(this%qoff(j) + k) + this%q(a, k, j)*g(ppos(a, j))
+               if (ppos(a, j) > 0) then
+                  this%t(this%qoff(j) + k) = this%t(this%qoff(j) + k) + &
+                        this%q(a, k, j)*g(ppos(a, j))
+               end if
             end do
          end do
       end do

@@ -65,12 +65,16 @@ module contact_system
    public :: contact_system_t, contact_equations, index_contact_equations
 
    type, abstract :: contact_system_t
-      class(linear_solver_t), allocatable :: solver   !! the bodies' solver (K_AB its base), owned after setup
+      class(linear_solver_t), allocatable :: solver   !! the bodies' solver (K_AB its
+                                                      !! base), owned after setup
       integer :: neq = 0                              !! equations
-      integer, allocatable :: id(:, :)                !! (2, npoin) equation of each nodal dof (dof_map%id)
+      integer, allocatable :: id(:, :)                !! (2, npoin) equation of each
+                                                      !! nodal dof (dof_map%id)
       integer, allocatable :: peq(:, :)               !! (nd, npair) equations of the pairs' dofs
-      integer :: bad_eq = 0                           !! equation of a singular pivot found by the system itself
-      logical :: condensed = .false.                  !! the bodies are condensed onto the contact equations
+      integer :: bad_eq = 0                           !! equation of a singular pivot
+                                                      !! found by the system itself
+      logical :: condensed = .false.                  !! the bodies are condensed
+                                                      !! onto the contact equations
    contains
       procedure :: setup
       procedure(prepare_i), deferred :: prepare
@@ -121,7 +125,8 @@ module contact_system
          import :: contact_system_t, dp, status_t
          class(contact_system_t), intent(inout) :: this
          real(dp), intent(inout) :: du(:, :)       !! (2, npoin) the attempt's increment
-         logical, intent(in) :: need_full          !! the dofs away from the contact equations are needed now
+         logical, intent(in) :: need_full          !! the dofs away from the contact
+                                                   !! equations are needed now
          type(status_t), intent(inout) :: status
       end subroutine recover_i
 
@@ -145,7 +150,8 @@ contains
    !> Take the bodies' solver over and prepare what stays fixed for the run.
    subroutine setup(this, solver, map, peq, kref, status)
       class(contact_system_t), intent(inout) :: this
-      class(linear_solver_t), allocatable, intent(inout) :: solver   !! K_AB stored as base; moved in
+      class(linear_solver_t), allocatable, intent(inout) :: solver   !! K_AB stored as
+         !! base; moved in
       type(dof_map_t), intent(in) :: map
       integer, intent(in) :: peq(:, :)            !! (nd, npair) equations of the pairs' dofs
       real(dp), intent(in) :: kref(:, :, :)       !! (nd, nd, npair) reference springs

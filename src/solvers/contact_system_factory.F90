@@ -73,8 +73,10 @@ contains
    function contact_system_kind(condense, npair, nc, solver) result(kind)
       integer, intent(in) :: condense          !! CONDENSE_AUTO, CONDENSE_ON or CONDENSE_OFF
       integer, intent(in) :: npair             !! contact pairs
-      integer, intent(in) :: nc                !! contact equations (distinct free equations of the pairs)
-      class(linear_solver_t), intent(in), optional :: solver   !! the bodies' solver, analysed (neq known)
+      integer, intent(in) :: nc                !! contact equations (distinct
+                                               !! free equations of the pairs)
+      class(linear_solver_t), intent(in), optional :: solver   !! the bodies' solver,
+                                                               !! analysed (neq known)
       integer :: kind, neq
       logical :: mumps
       mumps = .false.
@@ -97,7 +99,9 @@ contains
             kind = SYSTEM_FULL
          case default
             if (mumps) then
-               if (nc <= AUTO_MAX_SCHUR_EQUATIONS) kind = merge(SYSTEM_MUMPS_SCHUR, SYSTEM_FULL, schur_pays(neq, nc))
+               if (nc <= AUTO_MAX_SCHUR_EQUATIONS) then
+                  kind = merge(SYSTEM_MUMPS_SCHUR, SYSTEM_FULL, schur_pays(neq, nc))
+               end if
             else if (nc <= AUTO_MAX_CONTACT_EQUATIONS) then
                kind = SYSTEM_CONDENSED
             end if

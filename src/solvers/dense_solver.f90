@@ -15,7 +15,8 @@ module dense_solver
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp, i8
    use errors, only: status_t, fatal_internal, STAT_SINGULAR, STAT_SOLVER
-   use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
+   use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, &
+         ST_FACTORED, ST_FAILED
    use lapack_interfaces, only: dpotrf, dpotrs, dtrtrs
    implicit none
    private
@@ -66,7 +67,8 @@ contains
          end if
          if (any(adjncy(1:min(size(adjncy), xadj(neq + 1) - 1)) < 1) .or. &
              any(adjncy(1:min(size(adjncy), xadj(neq + 1) - 1)) > neq)) then
-            call status%set(STAT_SOLVER, 'dense solver: invalid equation graph (equation out of range)')
+            call status%set(STAT_SOLVER, &
+                            'dense solver: invalid equation graph (equation out of range)')
             return
          end if
       end if
@@ -108,7 +110,8 @@ contains
    subroutine dense_zero(this)
       class(dense_solver_t), intent(inout) :: this
       if (this%state == ST_EMPTY) then
-         call fatal_internal('dense solver: zero called before analyse', 'dense_solver.f90', __LINE__)
+         call fatal_internal('dense solver: zero called before analyse', 'dense_solver.f90', &
+                             __LINE__)
       end if
       this%k = 0.0_dp
       this%n_outside = 0

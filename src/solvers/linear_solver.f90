@@ -170,7 +170,8 @@ contains
       character(len=*), intent(in) :: file   !! source file of the caller
       integer, intent(in) :: line            !! line of the caller
       if (this%state /= ST_ASSEMBLING) call fatal_internal(this%name()// &
-         ' solver: add_element outside assembly (call analyse, zero or restore_base first)', file, line)
+         ' solver: add_element outside assembly (call analyse, zero or restore_base first)', &
+         file, line)
       if (size(ke, 1) /= size(ieq) .or. size(ke, 2) /= size(ieq)) call fatal_internal( &
          this%name()//' solver: element matrix and equation list differ in size', file, line)
    end subroutine check_element
@@ -185,7 +186,8 @@ contains
       select case (this%state)
       case (ST_FACTORED)
       case (ST_FAILED)
-         call status%set(STAT_SOLVER, this%name()//' solver: no valid factorization to solve with ('// &
+         call status%set(STAT_SOLVER, this%name()// &
+                         ' solver: no valid factorization to solve with ('// &
                          this%fail_msg//')')
          return
       case default

@@ -78,7 +78,8 @@ contains
       nv = int(n, c_int)
       rc = metis_nodend(nv, x0, a0, c_null_ptr, c_null_ptr, perm, iperm)
       if (rc /= METIS_OK) then
-         call status%set(STAT_SOLVER, 'METIS_NodeND failed (return code '//itoa(int(rc))//') on a graph of '// &
+         call status%set(STAT_SOLVER, 'METIS_NodeND failed (return code '//itoa(int(rc))// &
+                         ') on a graph of '// &
                          itoa(n)//' vertices')
          return
       end if

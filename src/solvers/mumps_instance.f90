@@ -38,7 +38,8 @@ module mumps_instance
    public :: JOB_START, JOB_END, JOB_ANALYSE, JOB_FACTORIZE, JOB_SOLVE
 
    !> MUMPS's JOB values.
-   integer, parameter :: JOB_START = -1, JOB_END = -2, JOB_ANALYSE = 1, JOB_FACTORIZE = 2, JOB_SOLVE = 3
+   integer, parameter :: JOB_START = -1, JOB_END = -2, JOB_ANALYSE = 1, JOB_FACTORIZE = 2, &
+         JOB_SOLVE = 3
 
    !> First word of a worker command that concerns MUMPS.
    integer, parameter :: MUMPS_SERVICE = 1
@@ -86,7 +87,9 @@ contains
       integer, intent(out) :: info1     !! INFOG(1) after JOB = -1
       call parallel_init()              ! done by the main program; a unit test may not have
       if (.not. is_root()) call serve_commands(serve_mumps)
-      if (this%started()) call fatal_internal('mumps: start of a started instance', 'mumps_instance.f90', __LINE__)
+      if (this%started()) then
+         call fatal_internal('mumps: start of a started instance', 'mumps_instance.f90', __LINE__)
+      end if
       last_key = last_key + 1
       this%key = last_key
       allocate (this%id)
@@ -103,7 +106,8 @@ contains
    subroutine instance_run(this, job)
       class(mumps_instance_t), intent(inout) :: this
       integer, intent(in) :: job   !! MUMPS's JOB
-      if (.not. associated(this%id)) call fatal_internal('mumps: job '//itoa(job)//' on an instance not started', &
+      if (.not. associated(this%id)) call fatal_internal('mumps: job '//itoa(job)// &
+                                                         ' on an instance not started', &
                                                          'mumps_instance.f90', __LINE__)
       if (process_count() > 1) then
          call send_command([MUMPS_SERVICE, job, this%key, this%id%sym])
@@ -138,7 +142,8 @@ contains
       integer, intent(in) :: cmd(:)   !! (MUMPS_SERVICE, job, key, sym)
       integer :: k
       if (size(cmd) /= COMMAND_WORDS .or. cmd(1) /= MUMPS_SERVICE) then
-         call fatal_internal('mumps worker: unknown command '//itoa(cmd(1)), 'mumps_instance.f90', __LINE__)
+         call fatal_internal('mumps worker: unknown command '//itoa(cmd(1)), &
+                             'mumps_instance.f90', __LINE__)
       end if
       if (cmd(2) == JOB_START) then
          k = free_slot()
@@ -149,7 +154,10 @@ contains
          slots(k)%id%par = 1
       else
          k = findloc(slots(:)%key, cmd(3), dim=1)
-         if (k == 0) call fatal_internal('mumps worker: no instance '//itoa(cmd(3)), 'mumps_instance.f90', __LINE__)
+         if (k == 0) then
+            call fatal_internal('mumps worker: no instance '//itoa(cmd(3)), 'mumps_instance.f90', &
+                                __LINE__)
+         end if
          call broadcast(slots(k)%id%icntl)
          call broadcast(slots(k)%id%cntl)
       end if
@@ -197,15 +205,18 @@ contains
       case (-2)
          what = 'the number of entries NNZ is out of range ('//itoa(info2)//')'
       case (-3)
-         what = 'invalid JOB sequence (internal error: analysis, factorization and solve called out of order)'
+         what = 'invalid JOB sequence (internal error: analysis, factorization and solve called &
+         &out of order)'
       case (-5, -7)
-         what = 'not enough memory for the analysis (allocation of '//count_text(info2)//' values failed)'
+         what = 'not enough memory for the analysis (allocation of '//count_text(info2)// &
+               ' values failed)'
       case (-6)
          what = 'the matrix is structurally singular (structural rank '//itoa(info2)//')'
       case (-8, -9, -14, -15, -17, -20)
          what = 'an internal workspace of MUMPS is too small (ICNTL(14) relaxation exhausted)'
       case (-10)
-         what = 'the matrix is numerically singular (a zero pivot after '//itoa(info2)//' eliminated pivots)'
+         what = 'the matrix is numerically singular (a zero pivot after '//itoa(info2)// &
+               ' eliminated pivots)'
       case (-11, -12)
          what = 'the internal workspace of MUMPS is too small for the solve'
       case (-13)
@@ -227,7 +238,8 @@ contains
       case (-90)
          what = 'out-of-core error'
       case default
-         what = 'error INFOG(1) = '//itoa(info1)//', INFOG(2) = '//itoa(info2)//' (MUMPS Users'' guide, sec. 8)'
+         what = 'error INFOG(1) = '//itoa(info1)//', INFOG(2) = '//itoa(info2)// &
+               ' (MUMPS Users'' guide, sec. 8)'
       end select
       s = 'MUMPS: '//what
    end function mumps_error_text

@@ -65,16 +65,20 @@ module mumps_schur_system
       integer :: nc = 0                      !! contact equations
       integer, allocatable :: ceq(:)         !! their global equation numbers
       integer, allocatable :: pos(:)         !! (neq) position of an equation in ceq, 0 if none
-      integer, allocatable :: ppos(:, :)     !! (nd, npair) position of each pair dof in ceq, 0 if none
-      integer, allocatable :: cdof(:, :)     !! (3, ndof) (dof, node, position) of the nodal dofs on c
+      integer, allocatable :: ppos(:, :)     !! (nd, npair) position of each
+                                             !! pair dof in ceq, 0 if none
+      integer, allocatable :: cdof(:, :)     !! (3, ndof) (dof, node, position)
+                                             !! of the nodal dofs on c
       real(dp), allocatable :: kref(:, :, :) !! (nd, nd, npair) reference springs K_ref
       real(dp), allocatable :: dk(:, :, :)   !! (nd, nd, npair) K_c - K_ref of the current springs
-      type(contact_dense_t) :: dense         !! S_ref = S + K_ref, and S_ref + K_c - K_ref factorized
+      type(contact_dense_t) :: dense         !! S_ref = S + K_ref, and S_ref
+                                             !! + K_c - K_ref factorized
       ! the attempt under way, and the steps whose recovery is postponed
       logical :: first = .true.              !! the next solve is the attempt's first
       logical :: postponed = .false.         !! some steps wait for their recovery
       real(dp), allocatable :: b1(:)         !! (neq) first right-hand side of the attempt
-      real(dp), allocatable :: bsum(:)       !! (neq) sum of the postponed steps' first right-hand sides
+      real(dp), allocatable :: bsum(:)       !! (neq) sum of the postponed
+                                             !! steps' first right-hand sides
       real(dp), allocatable :: xsum(:)       !! (n_c) sum of the attempt's dv_c
       real(dp), allocatable :: xpost(:)      !! (n_c) sum of the postponed steps' dv_c
       real(dp), allocatable :: xc(:)         !! (n_c) work
@@ -110,10 +114,13 @@ contains
       if (allocated(this%kref)) deallocate (this%kref)
       allocate (this%kref, source=kref)
       allocate (this%dk, mold=kref)
-      call index_contact_equations(this%peq, this%neq, this%id, this%ceq, this%pos, this%ppos, this%cdof)
+      call index_contact_equations(this%peq, this%neq, this%id, this%ceq, this%pos, this%ppos, &
+                                   this%cdof)
       this%nc = size(this%ceq)
       if (this%nc < 1 .or. this%nc >= this%neq) then
-         call status%set(STAT_SOLVER, 'Schur contact system: needs between 1 and neq-1 contact equations, has '// &
+         call status%set(STAT_SOLVER, &
+                         'Schur contact system: needs between 1 and neq-1 contact equations, &
+                         &has '// &
                          itoa(this%nc)//' of '//itoa(this%neq))
          return
       end if
@@ -126,10 +133,12 @@ contains
          end do
          call s%factorize_schur(this%ceq, this%dense%s, status)
       class default
-         call status%set(STAT_SOLVER, 'Schur contact system: needs the mumps solver, has '//s%name())
+         call status%set(STAT_SOLVER, 'Schur contact system: needs the mumps solver, has '// &
+                         s%name())
       end select
       if (.not. status%ok()) then
-         status%message = 'Schur complement: the bodies with their contact equations held are singular or '// &
+         status%message = 'Schur complement: the bodies with their contact equations held are &
+         &singular or '// &
                           'the factorization failed ('//status%message//'); check the restraints'
          return
       end if
@@ -149,7 +158,8 @@ contains
       class(mumps_schur_system_t), intent(inout) :: this
       real(dp), intent(in) :: kc(:, :, :)
       type(status_t), intent(inout) :: status
-      call set_contact_springs(this%dense, this%ppos, this%ceq, kc, this%kref, this%dk, 'the Schur complement', &
+      call set_contact_springs(this%dense, this%ppos, this%ceq, kc, this%kref, this%dk, &
+                               'the Schur complement', &
                                this%bad_eq, status)
    end subroutine schur_set_springs
 
@@ -300,6 +310,8 @@ contains
       integer(i8) :: bytes
       bytes = this%dense%memory_bytes() + (4_i8*int(this%neq, i8) + 4_i8*int(this%nc, i8))*8_i8 + &
               4_i8*int(this%neq, i8)
-      if (allocated(this%kref)) bytes = bytes + 2_i8*storage_size(this%kref, i8)/8*size(this%kref, kind=i8)
+      if (allocated(this%kref)) then
+         bytes = bytes + 2_i8*storage_size(this%kref, i8)/8*size(this%kref, kind=i8)
+      end if
    end function schur_memory
 end module mumps_schur_system

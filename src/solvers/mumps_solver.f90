@@ -74,7 +74,8 @@ module mumps_solver
       integer, private :: analysis_count = 0
       integer, private :: ordering_used = -1
       integer, private :: nschur = 0                  ! Schur variables (0: none)
-      logical, private :: analysed = .false.          ! MUMPS's analysis holds for the pattern (and Schur variables)
+      logical, private :: analysed = .false.          ! MUMPS's analysis holds for the
+                                                      ! pattern (and Schur variables)
       logical, private :: metis_missing = .false.     ! METIS asked for, not built in: AMD used
       logical, private :: many = .false.              ! many factorizations of the pattern expected
    contains
@@ -177,7 +178,8 @@ contains
          id%nnz = int(size(rows), i8)
          allocate (id%irn(size(rows)), id%jcn(size(rows)), id%a(size(rows)), id%colsca(neq), &
             id%rhs(neq))
-         id%rowsca => id%colsca          ! symmetric scaling: one array (Users' guide, ICNTL(8) = -1)
+         id%rowsca => id%colsca          ! symmetric scaling: one array
+                                         ! (Users' guide, ICNTL(8) = -1)
          call column_indices(this%cp, id%jcn)
          id%irn(:) = rows
          id%a(:) = 0.0_dp
@@ -186,7 +188,8 @@ contains
          id%icntl(6) = 0                 ! no matching: the analysis sees the pattern only
          id%icntl(8) = -1                ! scaling given by us: a unit diagonal
          id%icntl(12) = 1                ! plain ordering of the symmetric pattern
-         id%icntl(13) = 1                ! root front not on ScaLAPACK: null pivots detected there too
+         id%icntl(13) = 1                ! root front not on ScaLAPACK:
+                                         ! null pivots detected there too
          id%icntl(24) = 1                ! null pivot row detection ...
          id%cntl(3) = -this%pivot_tol    ! ... with an absolute threshold on the scaled matrix
          id%icntl(28) = 1                ! sequential analysis

@@ -27,7 +27,8 @@ module skyline_solver
    use kinds, only: dp, i8
    use errors, only: status_t, fatal_internal, STAT_SINGULAR, STAT_SOLVER
    use graph, only: column_tops
-   use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
+   use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, &
+         ST_FACTORED, ST_FAILED
    implicit none
    private
 
@@ -127,7 +128,8 @@ contains
    subroutine skyline_zero(this)
       class(skyline_solver_t), intent(inout) :: this
       if (this%state == ST_EMPTY) then
-         call fatal_internal('skyline solver: zero called before analyse', 'skyline_solver.f90', __LINE__)
+         call fatal_internal('skyline solver: zero called before analyse', 'skyline_solver.f90', &
+                             __LINE__)
       end if
       this%a = 0.0_dp
       this%n_outside = 0

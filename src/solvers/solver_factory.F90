@@ -36,7 +36,8 @@ module solver_factory
    use strings, only: itoa
    use model, only: model_t
    use contact_types, only: UPDATE_RETURN
-   use run_plan, only: run_plan_t, solver_code, condense_code, scheme_code, resolve_ordering, CHOICE_DECK, &
+   use run_plan, only: run_plan_t, solver_code, condense_code, scheme_code, resolve_ordering, &
+         CHOICE_DECK, &
                        CHOICE_COMMAND_LINE, CHOICE_AUTOMATIC
    implicit none
    private
@@ -47,13 +48,19 @@ module solver_factory
    !> Crossovers of the automatic choice (DOFs = 2 per node, before the
    !! restraints), from the measurements of docs/performance.md: the sparse
    !! solvers win from these sizes on, the skyline solver below them.
-   integer, parameter :: AUTO_MUMPS_CONTACT_DOFS = 5000     !! contact: Schur path faster from the sphere at
-                                                           !! a_H/5 (5 932 DOFs) on, even at 2 756 (punch_5_1)
-   integer, parameter :: AUTO_MUMPS_DOFS = 10000            !! no contact: one MUMPS solve at 1e4 DOFs takes
+   integer, parameter :: AUTO_MUMPS_CONTACT_DOFS = 5000     !! contact: Schur path faster
+                                                            !! from the sphere at
+                                                           !! a_H/5 (5 932 DOFs) on, even at 2 756
+                                                           !! (punch_5_1)
+   integer, parameter :: AUTO_MUMPS_DOFS = 10000            !! no contact: one MUMPS
+                                                            !! solve at 1e4 DOFs takes
                                                            !! 0.019 s, the skyline's about 0.1 s
-   integer, parameter :: AUTO_UMFPACK_CONTACT_DOFS = 10000  !! contact without MUMPS: condensation with UMFPACK
-                                                           !! 2.6 x faster at 1e4 DOFs, equal at 5 932
-   integer, parameter :: AUTO_UMFPACK_DOFS = 30000          !! no contact: UMFPACK faster from 3e4 equations
+   integer, parameter :: AUTO_UMFPACK_CONTACT_DOFS = 10000  !! contact without MUMPS:
+                                                            !! condensation with UMFPACK
+                                                           !! 2.6 x faster at 1e4 DOFs, equal at 5
+                                                           !! 932
+   integer, parameter :: AUTO_UMFPACK_DOFS = 30000          !! no contact: UMFPACK faster
+                                                            !! from 3e4 equations
 
 contains
 
@@ -69,7 +76,8 @@ contains
       type(model_t), intent(in) :: m
       character(len=*), intent(in) :: cli_solver
       type(run_plan_t), intent(out) :: plan
-      character(len=:), allocatable, intent(out) :: name   !! the solver's name as given (for create_solver)
+      character(len=:), allocatable, intent(out) :: name   !! the solver's name as given
+                                                           !! (for create_solver)
       character(len=:), allocatable :: reason
       integer :: npair
       logical :: returning
@@ -167,14 +175,17 @@ contains
       else if (mumps .and. ndof >= merge(AUTO_MUMPS_CONTACT_DOFS, AUTO_MUMPS_DOFS, contact)) then
          name = 'mumps'
          reason = what//' >= '//itoa(merge(AUTO_MUMPS_CONTACT_DOFS, AUTO_MUMPS_DOFS, contact))
-      else if (umfpack .and. ndof >= merge(AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS, contact)) then
+      else if (umfpack .and. ndof >= merge(AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS, &
+                                           contact)) then
          name = 'umfpack'
          reason = what//' >= '//itoa(merge(AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS, contact))
          if (.not. mumps) reason = reason//', built without MUMPS'
       else
          name = 'skyline'
-         reason = what//' < '//itoa(merge(merge(AUTO_MUMPS_CONTACT_DOFS, AUTO_MUMPS_DOFS, contact), &
-                                          merge(AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS, contact), mumps))
+         reason = what//' < '//itoa(merge(merge(AUTO_MUMPS_CONTACT_DOFS, AUTO_MUMPS_DOFS, &
+                                                contact), &
+                                          merge(AUTO_UMFPACK_CONTACT_DOFS, AUTO_UMFPACK_DOFS, &
+                                                contact), mumps))
          if (.not. (mumps .or. umfpack)) reason = 'built without a sparse solver'
       end if
    end subroutine choose_solver

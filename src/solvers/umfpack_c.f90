@@ -12,7 +12,8 @@ module umfpack_c
    implicit none
    private
 
-   public :: umfpack_di_defaults, umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, umfpack_di_wsolve, &
+   public :: umfpack_di_defaults, umfpack_di_symbolic, umfpack_di_numeric, umfpack_di_solve, &
+         umfpack_di_wsolve, &
              umfpack_di_free_symbolic, umfpack_di_free_numeric, umfpack_di_get_lunz, &
              umfpack_di_get_numeric
 
@@ -62,7 +63,8 @@ module umfpack_c
 
       !> Symbolic analysis (ordering, elimination tree) of a CSC pattern.
       !! `ax` may be C_NULL_PTR: the analysis then depends on the pattern only.
-      integer(c_int) function umfpack_di_symbolic(n_row, n_col, ap, ai, ax, symbolic, control, info) &
+      integer(c_int) function umfpack_di_symbolic(n_row, n_col, ap, ai, ax, symbolic, control, &
+                                                  info) &
          bind(C, name='umfpack_di_symbolic')
          import :: c_int, c_double, c_ptr
          integer(c_int), value :: n_row, n_col
@@ -102,7 +104,8 @@ module umfpack_c
 
       !> umfpack_di_solve with the workspace given (no allocation inside):
       !! Wi (n) and W (n without iterative refinement, 5 n with it).
-      integer(c_int) function umfpack_di_wsolve(sys, ap, ai, ax, x, b, numeric, control, info, wi, w) &
+      integer(c_int) function umfpack_di_wsolve(sys, ap, ai, ax, x, b, numeric, control, info, &
+                                                wi, w) &
          bind(C, name='umfpack_di_wsolve')
          import :: c_int, c_double, c_ptr
          integer(c_int), value :: sys
@@ -140,7 +143,8 @@ module umfpack_c
       !> Parts of the factors: P R A Q = L U.  Every array is optional (NULL);
       !! here it serves to read the diagonal of U (dx), the permutations p
       !! and q (0-based) and the row scale factors rs.
-      integer(c_int) function umfpack_di_get_numeric(lp, lj, lx, up, ui, ux, p, q, dx, do_recip, rs, numeric) &
+      integer(c_int) function umfpack_di_get_numeric(lp, lj, lx, up, ui, ux, p, q, dx, do_recip, &
+                                                     rs, numeric) &
          bind(C, name='umfpack_di_get_numeric')
          import :: c_int, c_ptr
          type(c_ptr), value :: lp, lj, lx, up, ui, ux, p, q, dx

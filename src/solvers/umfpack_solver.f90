@@ -47,7 +47,8 @@ module umfpack_solver
    use errors, only: status_t, fatal_internal, STAT_SINGULAR, STAT_SOLVER
    use strings, only: itoa, rtoa
    use sorting, only: insertion_sort
-   use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, ST_FACTORED, ST_FAILED
+   use linear_solver, only: linear_solver_t, solver_stats_t, ST_EMPTY, ST_ASSEMBLING, &
+         ST_FACTORED, ST_FAILED
    use umfpack_c
    implicit none
    private
@@ -63,7 +64,8 @@ module umfpack_solver
       !! (UMFPACK's default is 2; see the module header).  Read by `analyse`.
       integer :: refine_steps = 0
       integer(c_int), allocatable, private :: ap(:)   ! (0:neq) column pointers, 0-based
-      integer(c_int), allocatable, private :: ai(:)   ! (nnz) row indices, 0-based, sorted per column
+      integer(c_int), allocatable, private :: ai(:)   ! (nnz) row indices, 0-based,
+                                                      ! sorted per column
       real(c_double), allocatable, private :: ax(:)   ! (nnz) values
       real(c_double), allocatable, private :: base(:) ! stored copy of K_AB
       real(c_double), allocatable, private :: x(:)    ! (neq) solution of a solve
@@ -122,7 +124,8 @@ contains
             return
          end if
          if (xadj(1) /= 1 .or. xadj(neq + 1) - 1 > size(adjncy)) then
-            call status%set(STAT_SOLVER, 'umfpack solver: invalid equation graph (xadj must start at 1 '// &
+            call status%set(STAT_SOLVER, &
+                            'umfpack solver: invalid equation graph (xadj must start at 1 '// &
                             'and end within adjncy)')
             return
          end if
@@ -133,14 +136,16 @@ contains
       cnt = 1
       do r = 1, neq
          if (xadj(r + 1) < xadj(r)) then
-            call status%set(STAT_SOLVER, 'umfpack solver: invalid equation graph (xadj decreases at row '// &
+            call status%set(STAT_SOLVER, &
+                            'umfpack solver: invalid equation graph (xadj decreases at row '// &
                             itoa(r)//')')
             return
          end if
          do p = xadj(r), xadj(r + 1) - 1
             c = adjncy(p)
             if (c < 1 .or. c > neq) then
-               call status%set(STAT_SOLVER, 'umfpack solver: invalid equation graph (row '//itoa(r)// &
+               call status%set(STAT_SOLVER, 'umfpack solver: invalid equation graph (row '// &
+                               itoa(r)// &
                                ' lists equation '//itoa(c)//')')
                return
             end if
@@ -151,7 +156,8 @@ contains
       end do
       nnz8 = sum(int(cnt(1:neq), i8))
       if (nnz8 > int(huge(1_c_int), i8)) then
-         call status%set(STAT_SOLVER, 'umfpack solver: '//itoa(neq)//' equations give more than 2^31 '// &
+         call status%set(STAT_SOLVER, 'umfpack solver: '//itoa(neq)// &
+                         ' equations give more than 2^31 '// &
                          'matrix entries (the int version of UMFPACK cannot take them)')
          return
       end if
@@ -226,7 +232,8 @@ contains
             return
          end if
          this%symbolic_count = this%symbolic_count + 1
-         this%symbolic_bytes = int(this%info(UMFPACK_SYMBOLIC_SIZE + 1)*this%info(UMFPACK_SIZE_OF_UNIT + 1), i8)
+         this%symbolic_bytes = int(this%info(UMFPACK_SYMBOLIC_SIZE + &
+                                             1)*this%info(UMFPACK_SIZE_OF_UNIT + 1), i8)
       end if
       call update_memory(this)
    end subroutine umf_analyse
@@ -240,7 +247,9 @@ contains
       if (allocated(this%ai)) m = m + 4_i8*size(this%ai, kind=i8)
       if (allocated(this%ax)) m = m + 8_i8*size(this%ax, kind=i8)
       if (allocated(this%base)) m = m + 8_i8*size(this%base, kind=i8)
-      if (allocated(this%x)) m = m + 8_i8*(size(this%x, kind=i8) + size(this%w, kind=i8)) + 4_i8*size(this%wi, kind=i8)
+      if (allocated(this%x)) then
+         m = m + 8_i8*(size(this%x, kind=i8) + size(this%w, kind=i8)) + 4_i8*size(this%wi, kind=i8)
+      end if
       this%stats%memory_bytes = m
    end subroutine update_memory
 
@@ -248,7 +257,8 @@ contains
    subroutine umf_zero(this)
       class(umfpack_solver_t), intent(inout) :: this
       if (this%state == ST_EMPTY) then
-         call fatal_internal('umfpack solver: zero called before analyse', 'umfpack_solver.f90', __LINE__)
+         call fatal_internal('umfpack solver: zero called before analyse', 'umfpack_solver.f90', &
+                             __LINE__)
       end if
       call drop_numeric(this)
       this%ax = 0.0_c_double
@@ -389,14 +399,18 @@ contains
          return
       end if
       if (.not. all(ieee_is_finite(this%ax))) then
-         call fail(this, status, STAT_SOLVER, 'umfpack solver: the assembled matrix holds NaN or Inf', 0)
+         call fail(this, status, STAT_SOLVER, &
+                   'umfpack solver: the assembled matrix holds NaN or Inf', 0)
          return
       end if
       call drop_numeric(this)
-      st = umfpack_di_numeric(this%ap, this%ai, this%ax, this%symbolic, this%numeric, this%control, this%info)
+      st = umfpack_di_numeric(this%ap, this%ai, this%ax, this%symbolic, this%numeric, &
+                              this%control, this%info)
       if (st == UMFPACK_OK .or. st == UMFPACK_WARNING_singular_matrix) then
-         this%numeric_bytes = int(this%info(UMFPACK_NUMERIC_SIZE + 1)*this%info(UMFPACK_SIZE_OF_UNIT + 1), i8)
-         this%stats%nnz_factor = int(this%info(UMFPACK_LNZ + 1) + this%info(UMFPACK_UNZ + 1), i8) - this%neq
+         this%numeric_bytes = int(this%info(UMFPACK_NUMERIC_SIZE + &
+                                            1)*this%info(UMFPACK_SIZE_OF_UNIT + 1), i8)
+         this%stats%nnz_factor = int(this%info(UMFPACK_LNZ + 1) + this%info(UMFPACK_UNZ + 1), i8) &
+               - this%neq
          call update_memory(this)
       end if
       if (st == UMFPACK_WARNING_singular_matrix .or. st == UMFPACK_OK) then
@@ -427,12 +441,15 @@ contains
 
       n = this%neq
       allocate (p(n), q(n), dx(n), rs(n))
-      st2 = umfpack_di_get_numeric(c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, &
+      st2 = umfpack_di_get_numeric(c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, &
+                                   c_null_ptr, &
                                    c_loc(p), c_loc(q), c_loc(dx), do_recip, c_loc(rs), this%numeric)
       if (st2 /= UMFPACK_OK) then
          if (st == UMFPACK_WARNING_singular_matrix) then
-            call fail(this, status, STAT_SINGULAR, 'singular or unrestrained model: UMFPACK found the '// &
-                      'matrix singular; the equation cannot be told (reading the factors failed: '// &
+            call fail(this, status, STAT_SINGULAR, &
+                      'singular or unrestrained model: UMFPACK found the '// &
+                      'matrix singular; the equation cannot be told (reading the factors &
+                      &failed: '// &
                       umfpack_status_text(st2)//')', 0)
          else
             call fail(this, status, STAT_SOLVER, 'umfpack solver: cannot read the factors: '// &
@@ -464,7 +481,8 @@ contains
          if (akk > 0.0_dp) ratio = abs(ukk)/akk
          rmin = min(rmin, ratio)
          if (kbad == 0) then
-            if (.not. (abs(ukk) > this%pivot_tol*akk) .or. (symmetric_pivots .and. ukk < 0.0_dp)) then
+            if (.not. (abs(ukk) > this%pivot_tol*akk) .or. (symmetric_pivots .and. ukk < 0.0_dp)) &
+                  then
                kbad = k
                abad = akk
             end if
@@ -474,14 +492,18 @@ contains
       this%stats%pivot_ratio = rmin
       if (kbad > 0) then
          col = q(kbad) + 1
-         call fail(this, status, STAT_SINGULAR, 'singular or unrestrained model: zero or negative pivot at '// &
-                   'equation '//itoa(col)//' (pivot = '//rtoa(dx(kbad))//', diagonal = '//rtoa(abad)// &
+         call fail(this, status, STAT_SINGULAR, &
+                   'singular or unrestrained model: zero or negative pivot at '// &
+                   'equation '//itoa(col)//' (pivot = '//rtoa(dx(kbad))//', diagonal = '// &
+                   rtoa(abad)// &
                    ', row-scaled, pivot '//itoa(kbad)//' of the LU factors)', col)
          return
       end if
       if (st == UMFPACK_WARNING_singular_matrix) then
-         call fail(this, status, STAT_SINGULAR, 'singular or unrestrained model: UMFPACK found the matrix '// &
-                   'singular, but no zero diagonal of U could be located: the equation cannot be told', 0)
+         call fail(this, status, STAT_SINGULAR, &
+                   'singular or unrestrained model: UMFPACK found the matrix '// &
+                   'singular, but no zero diagonal of U could be located: the equation cannot be &
+                   &told', 0)
       end if
    end subroutine check_pivots
 
@@ -513,7 +535,8 @@ contains
          this%stats%solves = this%stats%solves + 1
          return
       end if
-      st = umfpack_di_wsolve(UMFPACK_A, this%ap, this%ai, this%ax, this%x, b, this%numeric, this%control, &
+      st = umfpack_di_wsolve(UMFPACK_A, this%ap, this%ai, this%ax, this%x, b, this%numeric, &
+                             this%control, &
                              this%info, this%wi, this%w)
       if (st /= UMFPACK_OK) then
          call status%set(STAT_SOLVER, 'umfpack solver: solve failed: '//umfpack_status_text(st))
