@@ -314,6 +314,7 @@ contains
          ! the a posteriori error estimate (module error_estimate): per element and of the model
          call write_real1(gid, 'error_indicator', body%error_indicator, err)
          call attr_real0(gid, 'estimated_error', body%estimated_error, err)
+         call attr_real0(gid, 'energy_norm', body%energy_norm, err)
       end if
       if (step%contact) call attr_real0(gid, 'residual', step%residual, err)
       if (step%contact) call attr_real0(gid, 'law_drift', step%drift, err)
@@ -705,6 +706,17 @@ contains
             call attr_real1(gid, 'zone_width', s%zone_width, err)
             call attr_int1(gid, 'zone_pairs', s%zone_pairs, err)
             call attr_real1(gid, 'zone_jump', s%zone_jump, err)
+         end if
+         if (s%peak_step > 0) then
+            ! the estimate at the largest strain energy (the run ended below half of it)
+            call attr_int(gid, 'peak_estimate_increment', s%peak_step, err)
+            call attr_real0(gid, 'peak_estimated_error', s%peak_error, err)
+            call attr_real0(gid, 'peak_energy_ratio', s%peak_energy_ratio, err)
+            if (allocated(s%peak_zone_width)) then
+               call attr_real1(gid, 'peak_zone_width', s%peak_zone_width, err)
+               call attr_int1(gid, 'peak_zone_pairs', s%peak_zone_pairs, err)
+               call attr_real1(gid, 'peak_zone_jump', s%peak_zone_jump, err)
+            end if
          end if
       end if
       if (allocated(s%dissipated)) then

@@ -41,7 +41,8 @@ module run_report
    use records, only: step_record_t, body_fields_t, contact_fields_t, run_info_t, run_doubts_t, &
                       cycle_table_t, numbering_report_t
    use results_hdf5, only: results_file_t
-   use run_summary, only: run_summary_t, summarise_run, write_run_summary, write_dissipation
+   use run_summary, only: run_summary_t, summarise_run, write_run_summary, write_dissipation, &
+                          estimate_peak_t, note_estimate_peak
    use pretension_report, only: list_pretension_sections, list_pretension_step, &
                                 list_pretension_summary
    use listing, only: list_header, list_method, list_input, list_step, list_progress_header, &
@@ -78,6 +79,7 @@ module run_report
       logical :: set_up_failed = .false.            !! the run stopped before its first increment
       integer(i8) :: t0 = 0, rate = 1               !! clock at the start of the run
       type(step_record_t) :: pret_last              !! the last step with section forces (summary)
+      type(estimate_peak_t) :: est_peak             !! the estimate at the largest strain energy
    contains
       procedure :: start => report_start
       procedure :: open => report_open
@@ -224,6 +226,7 @@ contains
       end if
       if (listed .and. status%ok()) call list_pretension_step(this%lu, m, srec)
       if (allocated(srec%pretension_force)) this%pret_last = srec
+      if (srec%full) call note_estimate_peak(this%est_peak, srec%step, body, fields)
       if (.not. status%ok()) return
       call system_clock(t1)
       if (.not. this%quiet) then
@@ -325,7 +328,8 @@ contains
       type(run_end_t), intent(in) :: fin
       type(run_summary_t), intent(out) :: s
       integer(i8) :: t1
-      call summarise_run(m, body, fields, fin%solutions, fin%drift, fin%ua, fin%pa, s)
+      call summarise_run(m, body, fields, fin%solutions, fin%drift, fin%ua, fin%pa, s, &
+                         this%est_peak)
       call system_clock(t1)
       s%seconds = real(t1 - this%t0, dp)/real(max(this%rate, 1_i8), dp)
       s%warnings = fin%warnings

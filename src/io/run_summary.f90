@@ -44,6 +44,7 @@ module run_summary
    implicit none
    private
    public :: run_summary_t, summarise_run, write_run_summary, list_run_summary, load_stages
+   public :: estimate_peak_t, note_estimate_peak
    public :: list_dissipation, write_dissipation
 
    !> A pair with a reversal point counts as unloaded when its pressure has
@@ -53,8 +54,23 @@ module run_summary
    !! block on a soft interface reverse on it), far below any unloading a deck
    !! applies.
    real(dp), parameter, public :: UNLOADED_FRACTION = 1.0e-6_dp
+   !> The estimate at the largest strain energy is printed too when the end's strain energy is
+   !! below this fraction of it (a run unloaded, or partly: its relative error is then of a
+   !! smaller field than the one the mesh was made for).
+   real(dp), parameter, public :: PEAK_ENERGY_FRACTION = 0.5_dp
 
    !> The figures of the summary.
+   !> The error estimate of the step with the largest strain energy of the run, kept by the run
+   !! report as the steps are written (note_estimate_peak): a run unloaded to zero ends at a
+   !! strain energy of round-off, whose relative error says nothing about the mesh.
+   type :: estimate_peak_t
+      integer :: step = 0                           !! its step (0: no step estimated yet)
+      real(dp) :: energy_norm = 0.0_dp              !! ||u_h||_E there
+      real(dp) :: estimated_error = 0.0_dp          !! its estimated error, fraction [-]
+      integer, allocatable :: zone_pairs(:)         !! (niface) its contact zones, as
+      real(dp), allocatable :: zone_width(:), zone_jump(:)  !! run_summary_t's
+   end type estimate_peak_t
+
    type :: run_summary_t
       integer :: nstep = 0                          !! accepted steps
       integer :: icase = 1                          !! the load case whose factor the stages follow
@@ -95,6 +111,13 @@ module run_summary
       real(dp) :: estimated_error = 0.0_dp          !! its estimated error, fraction [-]
       integer, allocatable :: zone_pairs(:)         !! (niface) closed pairs of each contact zone
       real(dp), allocatable :: zone_width(:), zone_jump(:)  !! (niface) their width, pressure jump
+      ! the estimate at the largest strain energy, when that is not the last step (peak_step 0
+      ! otherwise): its line, its figures and the end's strain energy as a fraction of its own
+      integer :: peak_step = 0
+      character(len=:), allocatable :: peak_estimate
+      real(dp) :: peak_error = 0.0_dp, peak_energy_ratio = 0.0_dp
+      integer, allocatable :: peak_zone_pairs(:)
+      real(dp), allocatable :: peak_zone_width(:), peak_zone_jump(:)
       real(dp), allocatable :: dissipated(:)        !! (niface) energy dissipated, cumulative ...
       real(dp), allocatable :: dissipated_normal(:), dissipated_tangential(:)  !! ... and its parts
       ! filled by the caller (run_report): the time, doubts, warnings, pretension sections
@@ -139,7 +162,7 @@ contains
    end subroutine list_run_summary
 
    !> The figures of the summary from the records of the run.
-   pure subroutine summarise_run(m, body, cf, solutions, drift, ua, pa, s)
+   pure subroutine summarise_run(m, body, cf, solutions, drift, ua, pa, s, peak)
       type(model_t), intent(in) :: m                    !! the model
       type(body_fields_t), intent(in) :: body           !! body fields of the last step (disp)
       type(contact_fields_t), intent(in) :: cf          !! contact fields of the last step
@@ -147,6 +170,8 @@ contains
       real(dp), intent(in) :: drift(:)                  !! law drift of every accepted step
       real(dp), intent(in) :: ua(:), pa(:)              !! reversal points of the pairs
       type(run_summary_t), intent(out) :: s
+      type(estimate_peak_t), intent(in), optional :: peak  !! the estimate at the largest
+                                                           !! strain energy (note_estimate_peak)
       integer :: k, np
       real(dp) :: ures
       s%nstep = size(solutions)
@@ -164,6 +189,20 @@ contains
          s%zone_width = cf%zone_width
          s%zone_pairs = cf%zone_pairs
          s%zone_jump = cf%zone_jump
+      end if
+      s%peak_estimate = ''
+      if (present(peak) .and. s%estimated) then
+         if (peak%step > 0 .and. body%energy_norm**2 < PEAK_ENERGY_FRACTION*peak%energy_norm**2) then
+            s%peak_step = peak%step
+            s%peak_error = peak%estimated_error
+            s%peak_energy_ratio = (body%energy_norm/peak%energy_norm)**2
+            if (allocated(peak%zone_width)) then
+               s%peak_zone_width = peak%zone_width
+               s%peak_zone_pairs = peak%zone_pairs
+               s%peak_zone_jump = peak%zone_jump
+            end if
+            s%peak_estimate = peak_estimate_line(s)
+         end if
       end if
       if (allocated(cf%dissipated_energy)) then
          s%dissipated = cf%dissipated_energy
@@ -472,6 +511,7 @@ contains
                s%worst_drift_step, ')'
       end if
       if (len(s%estimate) > 0) write (u, '(a)') s%estimate
+      if (len(s%peak_estimate) > 0) write (u, '(a)') s%peak_estimate
       write (b, '(f12.2)') seconds
       write (u, '(a,i0,a,i0,a)') ' ', s%solutions_total, ' solutions in ', s%nstep, &
             ' increments, '// &
@@ -488,35 +528,92 @@ contains
       type(contact_fields_t), intent(in) :: cf      !! contact fields of the last step
       character(len=*), intent(in) :: length_unit   !! unit of length of the model
       character(len=:), allocatable :: line
-      character(len=32) :: b
-      integer :: k
       line = ''
       if (.not. body%estimated) return
-      write (b, '(f0.2)') 100.0_dp*body%estimated_error
+      if (allocated(cf%zone_width)) then
+         line = estimate_text(body%estimated_error, length_unit, cf%zone_width, cf%zone_pairs, &
+                              cf%zone_jump)
+      else
+         line = estimate_text(body%estimated_error, length_unit)
+      end if
+   end function error_estimate_line
+
+   !> The estimate at the largest strain energy of the run, after the last step's (when the run
+   !! ended below it, e.g. unloaded): " at the largest strain energy (increment 23; the end's is
+   !! 0.0 % of it): estimated discretization error 1.30 % (energy norm); contact zone ...".
+   pure function peak_estimate_line(s) result(line)
+      type(run_summary_t), intent(in) :: s
+      character(len=:), allocatable :: line
+      character(len=32) :: b, r
+      write (b, '(i0)') s%peak_step
+      write (r, '(f0.1)') 100.0_dp*s%peak_energy_ratio
+      if (r(1:1) == '.') r = '0'//trim(r)
+      line = ' at the largest strain energy (increment '//trim(b)//'; the end''s is '//trim(r)// &
+             ' % of it):'
+      if (allocated(s%peak_zone_width)) then
+         line = line//estimate_text(s%peak_error, s%length_unit, s%peak_zone_width, &
+                                    s%peak_zone_pairs, s%peak_zone_jump)
+      else
+         line = line//estimate_text(s%peak_error, s%length_unit)
+      end if
+   end function peak_estimate_line
+
+   !> " estimated discretization error 3.14 % (energy norm)" and, given the contact zones,
+   !! "; contact zone ... wide resolved by N pairs, largest pressure jump ..." per interface.
+   pure function estimate_text(err, length_unit, zone_width, zone_pairs, zone_jump) result(line)
+      real(dp), intent(in) :: err                   !! estimated error, fraction [-]
+      character(len=*), intent(in) :: length_unit   !! unit of length of the model
+      real(dp), intent(in), optional :: zone_width(:), zone_jump(:)  !! (niface)
+      integer, intent(in), optional :: zone_pairs(:)                 !! (niface)
+      character(len=:), allocatable :: line
+      character(len=32) :: b
+      integer :: k
+      write (b, '(f0.2)') 100.0_dp*err
       if (b(1:1) == '.') b = '0'//trim(b)
       line = ' estimated discretization error '//trim(b)//' % (energy norm)'
-      if (.not. allocated(cf%zone_width)) return
-      do k = 1, size(cf%zone_width)
-         if (size(cf%zone_width) > 1) then
+      if (.not. (present(zone_width) .and. present(zone_pairs) .and. present(zone_jump))) return
+      do k = 1, size(zone_width)
+         if (size(zone_width) > 1) then
             write (b, '(i0)') k
             line = line//'; interface '//trim(b)//':'
          else
             line = line//';'
          end if
-         if (cf%zone_pairs(k) == 0) then
+         if (zone_pairs(k) == 0) then
             line = line//' no pair closed'
             cycle
          end if
-         write (b, '(es10.3)') cf%zone_width(k)
+         write (b, '(es10.3)') zone_width(k)
          line = line//' contact zone '//trim(adjustl(b))//' '//length_unit//' wide resolved by '
-         write (b, '(i0)') cf%zone_pairs(k)
-         line = line//trim(b)//merge(' pairs', ' pair ', cf%zone_pairs(k) /= 1)
-         write (b, '(f0.1)') 100.0_dp*cf%zone_jump(k)
+         write (b, '(i0)') zone_pairs(k)
+         line = line//trim(b)//merge(' pairs', ' pair ', zone_pairs(k) /= 1)
+         write (b, '(f0.1)') 100.0_dp*zone_jump(k)
          if (b(1:1) == '.') b = '0'//trim(b)
          line = trim(line)//', largest pressure jump between neighbouring pairs '//trim(b)// &
                ' % of the peak'
       end do
-   end function error_estimate_line
+   end function estimate_text
+
+   !> Keep the estimate of a step whose body fields hold one if its strain energy is the largest
+   !! so far (ties to the later step, so that a run held at its largest load keeps its end).
+   pure subroutine note_estimate_peak(peak, step, body, cf)
+      type(estimate_peak_t), intent(inout) :: peak
+      integer, intent(in) :: step                   !! the step's number
+      type(body_fields_t), intent(in) :: body       !! its body fields
+      type(contact_fields_t), intent(in) :: cf      !! its contact fields (unallocated: none)
+      if (.not. body%estimated) return
+      if (peak%step > 0 .and. body%energy_norm < peak%energy_norm) return
+      peak%step = step
+      peak%energy_norm = body%energy_norm
+      peak%estimated_error = body%estimated_error
+      if (allocated(cf%zone_width)) then
+         peak%zone_width = cf%zone_width
+         peak%zone_pairs = cf%zone_pairs
+         peak%zone_jump = cf%zone_jump
+      else if (allocated(peak%zone_width)) then
+         deallocate (peak%zone_width, peak%zone_pairs, peak%zone_jump)
+      end if
+   end subroutine note_estimate_peak
 
    !> The energy dissipated by the contact laws after the summary: per interface the cumulative
    !! total with its normal and tangential parts and, for a periodic history, the table of the

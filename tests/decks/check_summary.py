@@ -49,6 +49,41 @@ def need(s, key):
     return s[key]
 
 
+def estimate_line(s, t, prefix):
+    """The line ' estimated discretization error ...' against /summary's estimated_error and
+    zone_* attributes (prefix "peak_": those of the largest strain energy); False if t is not
+    such a line."""
+    m = re.match(rf" estimated discretization error ({NUM}) % \(energy norm\)(.*)$", t)
+    if not m:
+        return False
+    close(
+        prefix + "estimated_error",
+        m.group(1),
+        100.0 * need(s, prefix + "estimated_error"),
+        rel=0,
+        abs_=0.0051,
+    )
+    zones = re.findall(
+        rf"contact zone ({NUM}) \S+ wide resolved by (\d+) pairs?, largest pressure "
+        rf"jump between neighbouring pairs ({NUM}) %|(no pair closed)",
+        m.group(2),
+    )
+    for k, z in enumerate(zones):
+        if z[3]:
+            equal(f"{prefix}zone {k + 1} pairs", 0, s[prefix + "zone_pairs"][k])
+            continue
+        close(f"{prefix}zone {k + 1} width", z[0], s[prefix + "zone_width"][k], rel=6e-4)
+        equal(f"{prefix}zone {k + 1} pairs", int(z[1]), s[prefix + "zone_pairs"][k])
+        close(
+            f"{prefix}zone {k + 1} jump",
+            z[2],
+            100.0 * s[prefix + "zone_jump"][k],
+            rel=0,
+            abs_=0.051,
+        )
+    return True
+
+
 def main(h5, lis):
     r = Result(h5)
     s = r.summary
@@ -226,27 +261,23 @@ def main(h5, lis):
             close("worst_law_drift", m.group(1), need(s, "worst_law_drift"))
             equal("worst_law_drift_increment", int(m.group(2)), s["worst_law_drift_increment"])
             continue
-        m = re.match(rf" estimated discretization error ({NUM}) % \(energy norm\)(.*)$", t)
+        m = re.match(
+            rf" at the largest strain energy \(increment (\d+); the end's is ({NUM}) % of it\):"
+            rf"( estimated discretization error .*)$",
+            t,
+        )
         if m:
+            equal("peak_estimate_increment", int(m.group(1)), need(s, "peak_estimate_increment"))
             close(
-                "estimated_error",
-                m.group(1),
-                100.0 * need(s, "estimated_error"),
-                rel=0,
-                abs_=0.0051,
-            )
-            zones = re.findall(
-                rf"contact zone ({NUM}) \S+ wide resolved by (\d+) pairs?, largest pressure "
-                rf"jump between neighbouring pairs ({NUM}) %|(no pair closed)",
+                "peak_energy_ratio",
                 m.group(2),
+                100.0 * need(s, "peak_energy_ratio"),
+                rel=0,
+                abs_=0.051,
             )
-            for k, z in enumerate(zones):
-                if z[3]:
-                    equal(f"zone {k + 1} pairs", 0, s["zone_pairs"][k])
-                    continue
-                close(f"zone {k + 1} width", z[0], s["zone_width"][k], rel=6e-4)
-                equal(f"zone {k + 1} pairs", int(z[1]), s["zone_pairs"][k])
-                close(f"zone {k + 1} jump", z[2], 100.0 * s["zone_jump"][k], rel=0, abs_=0.051)
+            estimate_line(s, m.group(3), "peak_")
+            continue
+        if estimate_line(s, t, ""):
             continue
         m = re.match(r" (\d+) solutions in (\d+) increments, ([\d.]+) s$", t)
         if m:
