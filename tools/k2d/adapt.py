@@ -296,11 +296,28 @@ def zz_indicator(result, materials, step=None):
     return eta, float(np.sqrt(np.sum(eta ** 2)))
 
 
+def design_step(result):
+    """The step whose estimate drives the refinement: the one of the largest strain energy
+    (the attribute energy_norm the program writes with every estimate; ties to the later), so
+    that a history unloaded to zero is refined for the load it carried and not for the
+    round-off field of its end; the last step when no step has energy_norm."""
+    best = None
+    for s in result.steps:
+        e = s.attrs.get("energy_norm")
+        if e is None:
+            continue
+        e = float(np.atleast_1d(e)[0])
+        if best is None or e >= best[0]:
+            best = (e, s)
+    return best[1] if best else result.last
+
+
 def indicator(result, materials, step=None):
-    """(eta_e, estimate, source) of a step (default the last): the program's indicator when
-    the result file has it (source "program": the step's error_indicator, one per element, and
-    its estimated_error, read by k2d.results), else zz_indicator (source "stress recovery")."""
-    step = step or result.last
+    """(eta_e, estimate, source) of a step (default design_step: the largest strain energy):
+    the program's indicator when the result file has it (source "program": the step's
+    error_indicator, one per element, and its estimated_error, read by k2d.results), else
+    zz_indicator (source "stress recovery")."""
+    step = step or design_step(result)
     eta = step.error_indicator
     if eta is not None:
         eta = np.asarray(eta, dtype=float).ravel()
