@@ -342,12 +342,14 @@ def von_mises(s):
 
 
 def key_outputs(result):
-    """The outputs Richardson extrapolation is applied to, at the last kept increment, and the
+    """The outputs Richardson extrapolation is applied to, at the increment of the largest
+    strain energy (design_step: the last kept increment unless the history unloads), and the
     increment-size figures of the scheme: {"peak_pressure", "width", "approach", "von_mises",
     "slip_share" (NaN without contact), "law_drift" (largest over the kept increments),
     "residual", "scheme"}."""
     out = {k: float("nan") for k, _ in OUTPUTS}
-    out["von_mises"] = float(np.max(von_mises(result.last.field("stress_gauss"))))
+    step = design_step(result)
+    out["von_mises"] = float(np.max(von_mises(step.field("stress_gauss"))))
     drift = result.history("law_drift")
     out["law_drift"] = float(np.nanmax(drift)) if np.any(np.isfinite(drift)) else float("nan")
     res = result.history("residual")
@@ -356,7 +358,7 @@ def key_outputs(result):
     if result.contact is not None:
         from .history import History
         h = History(result)
-        f = h.figures(len(h.steps) - 1)
+        f = h.figures(next(k for k, s in enumerate(h.steps) if s.number == step.number))
         for k in ("peak_pressure", "width", "approach", "slip_share"):
             out[k] = f[k]
         out["scheme"] = SCHEMES.get(str(result.contact.attrs.get("update", "")).upper(),
