@@ -803,6 +803,7 @@ contains
       p%n = nrm
       p%t = [nrm(2), -nrm(1)]
       p%g0 = gavg
+      p%g_point = dot_product(m%coord(:, p%node_a) - xb, nrm)
       p%position = xb
       outcome = NODE_PAIRED
    end subroutine segment_pair

@@ -99,6 +99,14 @@ contains
             st%s(order(k))%closed = .true.
             nclose = nclose + 1
          end do
+      else if (.not. any(st%s%closed)) then
+         ! no pair closed by its gap: MATCHING SEGMENT averages the gap over a node's zone, so a
+         ! curved surface touching B at a node (a roller on a block) has g0 > 0 at every pair
+         ! and a body held by the contact alone would be unsupported; the nodes touching B
+         ! themselves (g_point <= gap_tol) start closed, as START NSTART would close them
+         do j = 1, np
+            st%s(j)%closed = cdef%pairs(j)%g_point <= gap_tol .and. active(cdef, j)
+         end do
       end if
    end subroutine contact_init
 

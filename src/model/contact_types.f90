@@ -140,6 +140,8 @@ module contact_types
       real(dp) :: t(2) = [1.0_dp, 0.0_dp]   !! unit tangent (cos alpha, sin alpha), eq. (3.31)
       real(dp) :: n(2) = [0.0_dp, 1.0_dp]   !! unit normal, n = (-sin alpha, cos alpha)
       real(dp) :: g0 = 0.0_dp               !! initial gap along n, eq. (3.8)
+      real(dp) :: g_point = huge(1.0_dp)    !! MATCHING SEGMENT: the gap at node a itself (g0 is
+                                            !! averaged over its zone); huge otherwise
       real(dp) :: area = 0.0_dp             !! lumped contact area A_j, eqs.
                                             !! (3.22), (3.26), (A1)-(A6)
       real(dp) :: position(2) = 0.0_dp      !! coordinates of point b (node
