@@ -11,7 +11,7 @@
 !! check compares the slip with.
 module contact_fields
    use kinds, only: dp
-   use contact_types, only: contact_def_t, contact_pair_t
+   use contact_types, only: contact_def_t, contact_pair_t, rigid_body_t, PAIR_RIGID, RIGID_CIRCLE
    use records, only: contact_fields_t, NS_OPEN, NS_LOADING, NS_UNLOADING
    use contact_algorithm, only: contact_state_t
    implicit none
@@ -116,17 +116,44 @@ contains
    end subroutine extrapolate_zero_area
 
    !> Distance from every pair to the nearest other pair (huge for a lone
-   !! pair): node-to-node contact assumes slips well below it.
-   pure function pair_spacing(pairs) result(spacing)
+   !! pair): node-to-node contact assumes slips well below it.  Given the
+   !! contact definition, a pair with a rigid profile takes the profile's own
+   !! scale instead, since its partner is the profile, not the next pair: the
+   !! radius of a circle (a slip s turns the pair's fixed normal by s/R), the
+   !! shortest segment of a polyline (a slip across a vertex or off a flat's end).
+   pure function pair_spacing(pairs, cdef) result(spacing)
       type(contact_pair_t), intent(in) :: pairs(:)
+      type(contact_def_t), intent(in), optional :: cdef  !! its interfaces and rigid bodies
       real(dp) :: spacing(size(pairs))
-      integer :: j, k
+      integer :: j, k, ir
       spacing = huge(1.0_dp)
       do j = 1, size(pairs)
+         if (present(cdef) .and. pairs(j)%kind == PAIR_RIGID) then
+            ir = cdef%ifaces(pairs(j)%iface)%rigid
+            if (ir > 0) then
+               spacing(j) = profile_scale(cdef%rigids(ir))
+               cycle
+            end if
+         end if
          do k = 1, size(pairs)
             if (k == j) cycle
             spacing(j) = min(spacing(j), norm2(pairs(k)%position - pairs(j)%position))
          end do
       end do
    end function pair_spacing
+
+   !> The length over which a rigid profile's normal stays put: a circle's
+   !! radius, a polyline's shortest segment.
+   pure real(dp) function profile_scale(rb) result(h)
+      type(rigid_body_t), intent(in) :: rb
+      integer :: k
+      if (rb%shape == RIGID_CIRCLE) then
+         h = rb%radius
+         return
+      end if
+      h = huge(1.0_dp)
+      do k = 1, size(rb%xy, 2) - 1
+         h = min(h, norm2(rb%xy(:, k + 1) - rb%xy(:, k)))
+      end do
+   end function profile_scale
 end module contact_fields

@@ -4,8 +4,8 @@
 module contact_start
    use kinds, only: dp
    use errors, only: status_t, STAT_INPUT
-   use model, only: model_t
-   use contact_types, only: LAW_ROUGH, UPDATE_RETURN
+   use model, only: model_t, NTYPE_AXISYMMETRIC
+   use contact_types, only: LAW_ROUGH, LAW_IDEAL, UPDATE_RETURN, PAIR_RIGID
    use contact_algorithm, only: contact_state_t, contact_init
    use restraint_check, only: find_bodies
    implicit none
@@ -23,7 +23,44 @@ contains
       gap_tol = m%contact%opts%gap_tol
       if (gap_tol < 0.0_dp) gap_tol = 1.0e-9_dp*model_size(m)
       call contact_init(m%contact, gap_tol, st)
+      if (m%contact%opts%n_start == 0) call support_free_rigids(m, gap_tol, st)
    end subroutine init_contact_states
+
+   !> A rigid body whose reference node is free in some direction and none of
+   !! whose pairs starts closed (a ball on a half-space touching it on the axis,
+   !! where the pair has no area, every other pair with a gap) would be held by
+   !! nothing in the first solution: its active pairs of the smallest gap (to
+   !! gap_tol) start closed, as START NSTART would close them.  The increment's
+   !! Newton iteration closes or opens them on their law.
+   subroutine support_free_rigids(m, gap_tol, st)
+      type(model_t), intent(in) :: m
+      real(dp), intent(in) :: gap_tol
+      type(contact_state_t), intent(inout) :: st
+      integer :: ir, j, k
+      logical :: free, mine(size(m%contact%pairs))
+      real(dp) :: gmin
+      if (.not. allocated(m%contact%rigids)) return
+      do ir = 1, size(m%contact%rigids)
+         associate (ref => m%contact%rigids(ir)%node)
+            free = .true.
+            do k = 1, size(m%fixes)
+               if (m%fixes(k)%node /= ref) cycle
+               ! in axisymmetry the body moves axially only
+               free = .not. (m%fixes(k)%fixed(2) .and. &
+                             (m%fixes(k)%fixed(1) .or. m%ntype == NTYPE_AXISYMMETRIC))
+            end do
+         end associate
+         if (.not. free) cycle
+         mine = [(m%contact%pairs(j)%kind == PAIR_RIGID .and. &
+                  m%contact%ifaces(m%contact%pairs(j)%iface)%rigid == ir .and. &
+                  (m%contact%pairs(j)%area > 0.0_dp .or. &
+                   m%contact%ifaces(m%contact%pairs(j)%iface)%law == LAW_IDEAL), &
+                  j=1, size(m%contact%pairs))]
+         if (.not. any(mine) .or. any(mine .and. st%s%closed)) cycle
+         gmin = minval(m%contact%pairs%g0, mask=mine)
+         where (mine .and. m%contact%pairs%g0 <= gmin + gap_tol) st%s%closed = .true.
+      end do
+   end subroutine support_free_rigids
 
    !> Largest extent of the mesh in x or y.
    pure real(dp) function model_size(m)

@@ -211,7 +211,7 @@ contains
       allocate (an%restrained(2, m%npoin))
       an%restrained = an%map%id < 0
       call an%springs%init(an%map, m%contact%pairs)
-      an%spacing = pair_spacing(m%contact%pairs)
+      an%spacing = pair_spacing(m%contact%pairs, m%contact)
       ! pretension sections: the lock measures the section between solutions, so the full system
       if (an%pret%n > 0) plan%condense = CONDENSE_OFF
       if (an%has_contact) plan%contact_system = contact_system_kind(plan%condense, an%npair, &
