@@ -276,7 +276,7 @@ contains
       integer, intent(out) :: status                !! TRIB_OK, TRIB_NONE or TRIB_FULL
       integer, parameter :: ng = 5
       real(dp) :: posgp(ng), weigp(ng), sh(3), dv(3), xy(2, 3), xg(2), dw, hat, xi, xb(2), nb(2), &
-            total, sg
+            total, sg, total_g
       real(dp), allocatable :: brk(:)
       integer :: ke, nd(3), nn, ja, ig, kb, bnd(3), bnn, r, q, ib, pass
       logical :: full, use_hat
@@ -286,6 +286,7 @@ contains
          use_hat = pass == 2
          nm = 0
          total = 0.0_dp
+         total_g = 0.0_dp
          gavg = 0.0_dp
          mw = 0.0_dp
          mnodes = 0
@@ -328,7 +329,11 @@ contains
                      mw(q) = mw(q) + hat*dw*sh(r)
                   end do
                   total = total + hat*dw
-                  gavg = gavg + hat*dw*dot_product(xg - xb, nrm)
+                  ! the gap averaged with the positive part of the weight: a corner's shape
+                  ! function of a quadratic edge is negative over part of it, and a curved
+                  ! surface touching B at the node (all gaps >= 0) got a negative average
+                  total_g = total_g + max(hat, 0.0_dp)*dw
+                  gavg = gavg + max(hat, 0.0_dp)*dw*dot_product(xg - xb, nrm)
                end do
             end do
          end do
@@ -341,7 +346,7 @@ contains
       else
          status = TRIB_OK
          mw(1:nm) = mw(1:nm)/total
-         gavg = gavg/total
+         gavg = gavg/total_g
          where (abs(mw(1:nm)) < 1.0e-14_dp) mw(1:nm) = 0.0_dp
       end if
    end subroutine tributary_weights

@@ -160,7 +160,12 @@ contains
                end if
             end if
             if (len(where) > 0) where = where//': '
-            write (u, '(a)') where//'error ['//e%code//']: '//e%message
+            ! a list of warnings (codes W-...) prints them as such, not as errors
+            if (index(e%code, 'W-') == 1) then
+               write (u, '(a)') where//'warning ['//e%code//']: '//e%message
+            else
+               write (u, '(a)') where//'error ['//e%code//']: '//e%message
+            end if
             if (len(e%card) > 0) then
                write (u, '(a)') '    | '//e%card
                if (e%col > 0) write (u, '(a)') '    | '//repeat(' ', e%col - 1)//'^'
