@@ -37,20 +37,17 @@ contains
       real(dp), intent(in) :: gap_tol
       type(contact_state_t), intent(inout) :: st
       integer :: ir, j, k
-      logical :: free, mine(size(m%contact%pairs))
+      logical :: fixed(2), mine(size(m%contact%pairs))
       real(dp) :: gmin
       if (.not. allocated(m%contact%rigids)) return
       do ir = 1, size(m%contact%rigids)
-         associate (ref => m%contact%rigids(ir)%node)
-            free = .true.
-            do k = 1, size(m%fixes)
-               if (m%fixes(k)%node /= ref) cycle
-               ! in axisymmetry the body moves axially only
-               free = .not. (m%fixes(k)%fixed(2) .and. &
-                             (m%fixes(k)%fixed(1) .or. m%ntype == NTYPE_AXISYMMETRIC))
-            end do
-         end associate
-         if (.not. free) cycle
+         fixed = .false.
+         do k = 1, size(m%fixes)
+            if (m%fixes(k)%node /= m%contact%rigids(ir)%node) cycle
+            fixed = fixed .or. m%fixes(k)%fixed
+         end do
+         ! in axisymmetry the body moves axially only
+         if (fixed(2) .and. (fixed(1) .or. m%ntype == NTYPE_AXISYMMETRIC)) cycle
          mine = [(m%contact%pairs(j)%kind == PAIR_RIGID .and. &
                   m%contact%ifaces(m%contact%pairs(j)%iface)%rigid == ir .and. &
                   (m%contact%pairs(j)%area > 0.0_dp .or. &

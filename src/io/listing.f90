@@ -437,7 +437,9 @@ contains
       end if
    end subroutine list_progress_header
 
-   !> One progress line for the terminal.
+   !> One progress line for the terminal.  Its load factor is the factor of
+   !! largest magnitude among the load cases, with its sign (a case taken
+   !! below zero, a pull, shows as such).
    subroutine list_progress(u, step, body, seconds, contact)
       integer, intent(in) :: u
       type(step_record_t), intent(in) :: step
@@ -449,21 +451,22 @@ contains
          ! a step whose body fields were skipped (neither written nor listed: step_record_t%full):
          ! its contact figures, a dash for max |u|, which is not known for it
          write (u, '(i6, f13.5, a12, i8, i6, i8, i4, es11.3, f12.3)') step%step, &
-               maxval(abs(step%lambda)), &
+               step%lambda(maxloc(abs(step%lambda), 1)), &
             '-', count(contact%normal_state /= NS_OPEN), &
             count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), &
             step%solutions, &
             step%repeats, step%residual, seconds
       else if (step%contact .and. present(contact)) then
          write (u, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') step%step, &
-               maxval(abs(step%lambda)), &
+               step%lambda(maxloc(abs(step%lambda), 1)), &
             maxval(sqrt(body%disp(1, :)**2 + body%disp(2, :)**2)), &
             count(contact%normal_state /= NS_OPEN), &
             count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), &
             step%solutions, &
             step%repeats, step%residual, seconds
       else
-         write (u, '(i6, f13.5, 3es14.5, f12.3)') step%step, maxval(abs(step%lambda)), &
+         write (u, '(i6, f13.5, 3es14.5, f12.3)') step%step, &
+               step%lambda(maxloc(abs(step%lambda), 1)), &
             maxval(sqrt(body%disp(1, :)**2 + body%disp(2, :)**2)), sum(body%react(1, :)), &
             sum(body%react(2, :)), seconds
       end if
