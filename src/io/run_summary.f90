@@ -192,7 +192,8 @@ contains
       end if
       s%peak_estimate = ''
       if (present(peak) .and. s%estimated) then
-         if (peak%step > 0 .and. body%energy_norm**2 < PEAK_ENERGY_FRACTION*peak%energy_norm**2) then
+         if (peak%step > 0 .and. &
+             body%energy_norm**2 < PEAK_ENERGY_FRACTION*peak%energy_norm**2) then
             s%peak_step = peak%step
             s%peak_error = peak%estimated_error
             s%peak_energy_ratio = (body%energy_norm/peak%energy_norm)**2
