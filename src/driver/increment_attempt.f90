@@ -25,6 +25,7 @@ module increment_attempt
    use step_audit, only: check_finite_springs
    use roundoff, only: resolvable_limit
    use pretension_assembly, only: pretension_run_t
+   use increment_predictor, only: increment_predictor_t
    implicit none
    private
    public :: analysis_t, attempt_t, attempt_failure, describe_singular, out_of_balance, &
@@ -68,6 +69,7 @@ module increment_attempt
       logical :: warned_closure = .false.
       type(pretension_run_t) :: pret               !! pretension sections: spring stiffnesses
                                                    !! (pretension_assembly)
+      type(increment_predictor_t) :: pred          !! the first iterate from the last increment
    end type analysis_t
 
 
@@ -301,6 +303,8 @@ contains
          call begin_increment(m%contact, st, first)
          if (slip_reg) call regularise_slip(m%contact, st)
          call an%springs%start_forces(m%contact, st, rvec, rpred, rhs)
+         call an%pred%predict(an%springs, m%contact, st, dlam, first .or. slip_reg, &
+                              an%restrained, att%du, rvec, rhs)
       end if
 
       call an%sys%begin_attempt()
@@ -341,6 +345,7 @@ contains
             return
          end if
          att%solutions = iter
+         if (iter == 1) call an%pred%shift_first(ddu)
          att%du = att%du + merge(0.0_dp, ddu, an%restrained)
          if (.not. an%has_contact) then
             att%converged = .true.
@@ -360,6 +365,10 @@ contains
          ! ... against the actual ones, after the mode checks
          call update_modes(again)
          if (again) cycle
+         ! a force at its round-off floor and within 1e-3 TOLR: the next correction would not
+         ! count (roundoff_share), so it is not made (where the predictor is used)
+         if (newton .and. .not. slip_reg .and. an%pred%enabled .and. rshare >= 1.0_dp .and. &
+             att%rnorm <= 1.0e-3_dp*m%contact%opts%tol_residual) dnorm = 0.0_dp
          att%dnorm = dnorm      ! (counts for the Newton return of rough pairs only)
          ! the second pass: the force is balanced, the correction is not (a mode that only
          ! force-free regularising springs hold): the springs elastic from here on
@@ -369,7 +378,8 @@ contains
             anchored = .true.
          end if
          if (att%rnorm <= att%rtol .and. &
-             (.not. newton .or. dnorm <= m%contact%opts%tol_displacement .or. iter == 1)) then
+             (.not. newton .or. dnorm <= m%contact%opts%tol_displacement .or. &
+              (iter == 1 .and. .not. an%pred%predicted))) then
             if (anchored) then
                ! the law's forces: what the anchored springs carried is out-of-balance
                ! force, which must be within the limit

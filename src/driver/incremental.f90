@@ -64,6 +64,7 @@ module incremental
    use pretension_assembly, only: assemble_pretension, pretension_nodal_forces, section_forces, &
          section_shortening
    use pretension_control, only: attempt_with_pretension
+   use increment_predictor, only: PREDICT_MIN_PAIRS
    implicit none
    private
    public :: run_options_t, run_result_t, run_analysis
@@ -75,6 +76,9 @@ module incremental
       character(len=:), allocatable :: listing_path   !! listing file ('' = <results>.lis)
       character(len=:), allocatable :: solver_name    !! '' = the deck's choice
       logical :: quiet = .false.                      !! no terminal output except errors
+      !> models of at least this many contact pairs start an increment's Newton iteration from
+      !! the last increment (increment_predictor; 0: every model, huge(1): none)
+      integer :: predict_min_pairs = PREDICT_MIN_PAIRS
    end type run_options_t
 
    !> What a run leaves in memory (used by the tests and the caller): the
@@ -146,6 +150,7 @@ contains
          numbering%solver_choice = solver_name//', chosen automatically ('//plan%solver_reason//')'
       end if
       if (status%ok()) call start_run(m, plan, an, res, status)
+      if (an%npair < opts%predict_min_pairs) an%pred%enabled = .false.
       if (status%ok()) then
          call out%open(m, numbering, res%info, res%body_fields_t, .false., status)
          if (status%ok()) then
@@ -251,6 +256,11 @@ contains
       call an%sys%setup(an%solver, an%map, an%springs%peq, an%kref, status)
       if (.not. status%ok()) call stiffness_range(an%map, an%diag, status)
       if (.not. status%ok()) return
+      ! the first iterate of an increment predicted from the last one (increment_predictor): the
+      ! Newton return of rough pairs, without ideal pairs or pretension sections
+      an%pred%enabled = an%has_contact .and. an%returning .and. res%contact%has_rough .and. &
+                        .not. res%contact%has_ideal .and. an%pret%n == 0
+      call an%pred%forget()
       ! stress recovery layout (Gauss points are fixed)
       call recover_stresses(m, res%body_fields_t, status)
       if (.not. status%ok()) return
@@ -356,6 +366,7 @@ contains
             pa_old = res%contact%s%pa
             if (an%has_contact) call energy_begin(res%contact, res%energy)
             if (an%has_contact) call commit_increment(m%contact, res%contact)
+            call an%pred%accept(att%du, dlam)
             res%disp = res%disp + att%du
             srec = step_record_t(step=nstep, deck_increment=inc, fraction=frac, cuts=cuts, &
                                  lambda=m%lambda(:, inc - 1) + &
