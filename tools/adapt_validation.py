@@ -33,7 +33,7 @@ and the true relative energy error sqrt((||u||^2 - ||u_h||^2) / ||u||^2) (Galerk
 orthogonality; for contact with a converged contact zone) gives the effectivity estimate /
 true.  That needs no initial gaps, so it serves the punch only; for every case the true error
 is also measured directly against an overkill reference (REFERENCES: the same bodies on Q8
-meshes refined by tools/adapt.py to an estimate of 0.05 - 0.07 %, run once into --runs),
+meshes refined by tools/adapt.py to an estimate of 0.02 - 0.05 %, run once into --runs),
 ||sigma_ref - sigma_h|| by the mesh's Gauss rules (k2d.adapt.reference_error), and against the
 reference run's mesh before its last (the spread of the two effectivities is the reference's
 uncertainty).  Rates: log(e_last / e_first) / log(N_last / N_first) over each sequence.
