@@ -31,7 +31,12 @@ exact energy ||u||^2 of the truncated bodies has no closed form: it is extrapola
 three finest uniform meshes, ||u||^2 - ||u_h||^2 = C N^-q (three equations for ||u||^2, C, q),
 and the true relative energy error sqrt((||u||^2 - ||u_h||^2) / ||u||^2) (Galerkin
 orthogonality; for contact with a converged contact zone) gives the effectivity estimate /
-true.  Rates: log(e_last / e_first) / log(N_last / N_first) over each sequence.
+true.  That needs no initial gaps, so it serves the punch only; for every case the true error
+is also measured directly against an overkill reference (REFERENCES: the same bodies on Q8
+meshes refined by tools/adapt.py to an estimate of 0.02 - 0.05 %, run once into --runs),
+||sigma_ref - sigma_h|| by the mesh's Gauss rules (k2d.adapt.reference_error), and against the
+reference run's mesh before its last (the spread of the two effectivities is the reference's
+uncertainty).  Rates: log(e_last / e_first) / log(N_last / N_first) over each sequence.
 The report (Markdown) opens with the summary table of docs/adaptivity.md: per case the DOFs
 each method needs for --tol (1 %) on its measure, interpolated log-log between the meshes
 around it (extrapolated along the last two meshes' rate, and marked so, where the budget ended
@@ -93,7 +98,8 @@ CASES = {
     # orthogonality: the work of the load exceeds ||u_h||^2 by sum F_n g0, and MATCHING SEGMENT on
     # non-nested meshes is not conforming); the energies measured do not converge monotonically
     "hertz_adapt": dict(measure=hertz_measure, exact=lambda: hertz_exact()["p0"], label="Hertz peak pressure p0",
-                        title="Hertz cylinder on a half-plane (Q4, plane strain)", energy=False, target=0.01),
+                        title="Hertz cylinder on a half-plane (Q4, plane strain)", energy=False, target=0.01,
+                        reference="hertz_ref_q8"),
     # the same model from a uniform start mesh (one size everywhere, about the graded start's DOFs):
     # uniform refinement of a mesh nobody graded by hand against the adaptive route from the
     # same mesh
@@ -101,14 +107,45 @@ CASES = {
                           label="Hertz peak pressure p0",
                           title="Hertz cylinder on a half-plane, uniform start mesh "
                           "(Q4, plane strain)",
-                          energy=False, target=0.01),
+                          energy=False, target=0.01, reference="hertz_ref_q8"),
     "punch_flat": dict(measure=punch_measure, exact=lambda: punch_exact()["band_mean"],
                        label="punch edge pressure (mean over 0.9b..b)",
-                       title="Flat punch on a half-plane (Q4, plane strain)", energy=True, target=0.01),
+                       title="Flat punch on a half-plane (Q4, plane strain)", energy=True, target=0.01,
+                       reference="punch_ref_q8"),
     "punch_flat_q8": dict(measure=punch_measure, exact=lambda: punch_exact()["band_mean"],
                           label="punch edge pressure (mean over 0.9b..b)",
-                          title="Flat punch on a half-plane (Q8, plane strain)", energy=True, target=0.002),
+                          title="Flat punch on a half-plane (Q8, plane strain)", energy=True, target=0.002,
+                          reference="punch_ref_q8"),
 }
+
+# The overkill references of the true energy-norm error (ReferenceField): each model's bodies on
+# Q8 meshes refined adaptively by tools/adapt.py to an energy estimate far below the errors
+# compared (run once, into --runs).  punch_ref_q8 is punch_flat_q8's deck run to a smaller target.
+REFERENCES = {
+    "hertz_ref_q8": dict(deck="hertz_ref_q8", target=0.0005, max_dofs=400000),
+    "punch_ref_q8": dict(deck="punch_flat_q8", target=0.0007, max_dofs=400000),
+}
+
+
+def reference_fields(name, runs, exe, reuse):
+    """(ReferenceField of the last mesh of the reference run `name`, that of the mesh before it,
+    the two meshes' rows): the reference and the one that measures its uncertainty."""
+    ref = REFERENCES[name]
+    out = os.path.join(runs, name)
+    csv_path = os.path.join(out, ref["deck"] + "_adapt.csv")
+    if not reuse or not os.path.isfile(csv_path):
+        subprocess.call([sys.executable, os.path.join(ROOT, "tools", "adapt.py"),
+                         os.path.join(ROOT, "inputs", "adapt", ref["deck"] + ".dat"), "--target", str(ref["target"]),
+                         "--max-dofs", str(ref["max_dofs"]), "-o", out, "--exe", exe])
+    with open(csv_path) as f:
+        rows = list(csv.DictReader(f))
+    if len(rows) < 2:
+        raise SystemExit("adapt_validation: the reference run %s made fewer than two meshes" % out)
+    fields = []
+    for row in rows[-2:][::-1]:
+        h5 = os.path.join(out, "steps_adaptive", "%s_%02d.h5" % (ref["deck"], int(row["step"])))
+        fields.append(ad.ReferenceField(Result(h5)))
+    return fields[0], fields[1], rows[-1], rows[-2]
 
 
 def extrapolate(N, U):
@@ -152,7 +189,8 @@ def study(name, runs, target, max_dofs, exe, reuse):
     case = CASES[name]
     exact = case["exact"]()
     for row in rows:
-        r = Result(os.path.join(out, "steps_" + row["method"], "%s_%02d.h5" % (name, int(row["step"]))))
+        row["h5"] = os.path.join(out, "steps_" + row["method"], "%s_%02d.h5" % (name, int(row["step"])))
+        r = Result(row["h5"])
         row["dofs"] = int(row["dofs"])
         row["est"] = float(row["estimated_error"])
         row["cpu"] = float(row["cpu_solve"])
@@ -170,12 +208,30 @@ def study(name, runs, target, max_dofs, exe, reuse):
                 Uinf2, C2, q2 = extrapolate([r["dofs"] for r in ada[-3:]], [r["U2"] for r in ada[-3:]])
             except ValueError as e:     # the last adaptive meshes too alike in size to fit a rate
                 print("adapt_validation: %s: no second reference (%s)" % (name, e), file=sys.stderr)
+    if case.get("reference"):
+        fine, prev, frow, prow = REF_CACHE.get(case["reference"]) or reference_fields(case["reference"], runs, exe,
+                                                                                     reuse)
+        REF_CACHE[case["reference"]] = (fine, prev, frow, prow)
+        for row in rows:
+            r = Result(row["h5"])
+            row["true_ref"] = ad.reference_error(r, mats, fine)[0]
+            row["true_prev"] = ad.reference_error(r, mats, prev)[0]
+    for row in rows:
+        for key in ("ref", "prev"):
+            t = row.get("true_" + key, float("nan"))
+            row["true_" + key] = t
+            row["eff_" + key] = row["est"] / t if t > 0 else float("nan")
     for row in rows:
         for key, ref in (("", Uinf), ("2", Uinf2)):
             d = ref - row["U2"]
             row["true" + key] = math.sqrt(d / ref) if d > 0 else float("nan")
             row["eff" + key] = row["est"] / row["true" + key] if d > 0 else float("nan")
-    return dict(name=name, case=case, exact=exact, rows=rows, uni=uni, ada=ada, Uinf=Uinf, q=q, Uinf2=Uinf2, q2=q2)
+    refinfo = REF_CACHE.get(case.get("reference"))
+    return dict(name=name, case=case, exact=exact, rows=rows, uni=uni, ada=ada, Uinf=Uinf, q=q, Uinf2=Uinf2, q2=q2,
+                ref=refinfo[2:] if refinfo else None)
+
+
+REF_CACHE = {}
 
 
 def first_within(rows, tol):
@@ -256,28 +312,37 @@ def report(studies, tol):
                   if math.isfinite(s["Uinf2"]) else "none from the last adaptive meshes: too alike in size")
         ref = ("reference energy ‖u‖² = %.7g (extrapolated from the three finest uniform meshes, "
                "‖u‖² − ‖u_h‖² ∝ N^−%.2f; %s)" % (s["Uinf"], s["q"], second)) if s["case"]["energy"] else \
-            "no energy reference (the initial gaps: no Galerkin orthogonality; true energy error not measured)"
+            "no extrapolated energy reference (the initial gaps: no Galerkin orthogonality)"
+        if s["ref"]:
+            fr, pr = s["ref"]
+            ref += ("; true error against the overkill reference %s: its last mesh, %d DOFs (Q8), estimate "
+                    "%.2g %% (the mesh before it, %d DOFs, estimate %.2g %%: the second effectivity)"
+                    % (s["case"]["reference"], int(fr["dofs"]), 100 * float(fr["estimated_error"]),
+                       int(pr["dofs"]), 100 * float(pr["estimated_error"])))
         md += ["#### %s" % s["case"]["title"], "",
                "Closed form: %s = %.5g N/mm²; %s." % (s["case"]["label"], s["exact"], ref), "",
-               "| method | mesh | DOFs | estimate η | true energy error | effectivity (uniform / adaptive reference) "
+               "| method | mesh | DOFs | estimate η | true energy error (reference) "
+               "| effectivity (reference / the mesh before it) "
+               "| effectivity, ‖u‖² extrapolated (uniform / adaptive) "
                "| measure | its error | CPU solve [s] | CPU cumulative [s] |",
-               "|---|---|---|---|---|---|---|---|---|---|"]
+               "|---|---|---|---|---|---|---|---|---|---|---|"]
 
         def f(v, fmt):
             return fmt % v if math.isfinite(v) else "—"
         for r in s["rows"]:
-            md.append("| %s | %s | %d | %.4f | %s | %s / %s | %.5g | %.2f %% | %.2f | %.2f |" % (
-                r["method"], r["step"], r["dofs"], r["est"], f(r["true"], "%.4f"), f(r["eff"], "%.2f"),
-                f(r["eff2"], "%.2f"), r["value"], 100 * r["err"], r["cpu"], r["cpu_cum"]))
+            md.append("| %s | %s | %d | %.4f | %s | %s / %s | %s / %s | %.5g | %.2f %% | %.2f | %.2f |" % (
+                r["method"], r["step"], r["dofs"], r["est"], f(r["true_ref"], "%.4f"), f(r["eff_ref"], "%.2f"),
+                f(r["eff_prev"], "%.2f"), f(r["eff"], "%.2f"), f(r["eff2"], "%.2f"), r["value"],
+                100 * r["err"], r["cpu"], r["cpu_cum"]))
         md.append("")
         fa, fu = first_within(s["ada"], tol), first_within(s["uni"], tol)
         rates = []
         for method, rs in (("uniform", s["uni"]), ("adaptive", s["ada"])):
-            fin = [r for r in rs if math.isfinite(r["true"]) and r["true"] > 0]
+            fin = [r for r in rs if math.isfinite(r["true_ref"]) and r["true_ref"] > 0]
             txt = "%s: estimate ∝ N^%.2f" % (method, slope([r["dofs"] for r in rs], [r["est"] for r in rs])) \
                 if len(rs) >= 2 else "%s: too few meshes" % method
             if len(fin) >= 2:
-                txt += ", true energy error ∝ N^%.2f" % slope([r["dofs"] for r in fin], [r["true"] for r in fin])
+                txt += ", true energy error ∝ N^%.2f" % slope([r["dofs"] for r in fin], [r["true_ref"] for r in fin])
             if len(rs) >= 2:
                 errs = [max(r["err"], 1e-12) for r in rs]
                 txt += ", measure's error ∝ N^%.2f" % slope([r["dofs"] for r in rs], errs)
@@ -306,8 +371,8 @@ def plot(studies, png):
         for method, rs, c in (("uniform", s["uni"], "C0"), ("adaptive", s["ada"], "C1")):
             N = [r["dofs"] for r in rs]
             ax.loglog(N, [r["est"] for r in rs], "o-", color=c, label="%s: estimate η" % method)
-            fin = [r for r in rs if math.isfinite(r["true"])]
-            ax.loglog([r["dofs"] for r in fin], [r["true"] for r in fin], "s--", color=c, mfc="none",
+            fin = [r for r in rs if math.isfinite(r["true_ref"])]
+            ax.loglog([r["dofs"] for r in fin], [r["true_ref"] for r in fin], "s--", color=c, mfc="none",
                       label="%s: true energy error" % method)
             ax.loglog(N, [max(r["err"], 1e-5) for r in rs], "^:", color=c, label="%s: %s" % (method, "measure's error"))
         ax.axhline(0.01, color="k", lw=0.8, ls="--")

@@ -241,12 +241,10 @@ def spr_stress(result, sg, order):
     return acc
 
 
-def _element_energies(result, materials, step, recovered=True):
-    """Per element: (integral of (sigma* - sigma_h) : C^-1 (sigma* - sigma_h) dV, or None without
-    `recovered`; integral of sigma_h : C^-1 sigma_h dV) over the element's Gauss points."""
+def _gauss_volumes(result, materials):
+    """Per Gauss point of the model: (its element (0-based), its volume dV = w |det J| times the
+    thickness or 2 pi r, its shape functions N (list per element type: (indices, N)), E, nu)."""
     m = result.mesh
-    sg = step.field("stress_gauss")
-    sn = spr_stress(result, sg, 2 if np.max(result.mesh.element_nodes) >= 8 else 1) if recovered else None
     ge = m.gauss_element - 1
     gp = m.gauss_coordinates.reshape(-1, 2)
     conn = m.connectivity
@@ -255,11 +253,11 @@ def _element_energies(result, materials, step, recovered=True):
     axi = int(result.attrs.get("ntype", 1)) == 3
     nelem = len(nnode)
     count = np.bincount(ge, minlength=nelem)
-    err = np.zeros(nelem)
-    ref = np.zeros(nelem)
     Emat = np.array([materials[int(k)][0] for k in m.material])
     numat = np.array([materials[int(k)][1] for k in m.material])
     tmat = np.array([materials[int(k)][2] for k in m.material])
+    dv = np.zeros(len(ge))
+    shapes = []
     for nn in np.unique(nnode):
         sel = np.where(nnode[ge] == nn)[0]
         e = ge[sel]
@@ -269,13 +267,107 @@ def _element_energies(result, materials, step, recovered=True):
         for cnt in np.unique(count[e]):
             k = count[e] == cnt
             w[k] = _gauss_weights(int(nn), loc[k], int(cnt))
-        dv = w * np.abs(detJ) * (2 * np.pi * gp[sel, 0] if axi else tmat[e])
+        dv[sel] = w * np.abs(detJ) * (2 * np.pi * gp[sel, 0] if axi else tmat[e])
+        shapes.append((sel, c, N))
+    return ge, dv, shapes, Emat[ge], numat[ge]
+
+
+def _element_energies(result, materials, step, recovered=True):
+    """Per element: (integral of (sigma* - sigma_h) : C^-1 (sigma* - sigma_h) dV, or None without
+    `recovered`; integral of sigma_h : C^-1 sigma_h dV) over the element's Gauss points."""
+    sg = step.field("stress_gauss")
+    sn = spr_stress(result, sg, 2 if np.max(result.mesh.element_nodes) >= 8 else 1) if recovered else None
+    nelem = len(result.mesh.element_nodes)
+    ge, dv, shapes, E, nu = _gauss_volumes(result, materials)
+    err = np.zeros(nelem)
+    ref = np.zeros(nelem)
+    for sel, c, N in shapes:
+        e = ge[sel]
         h = sg[sel]
         if recovered:
             star = np.einsum("pk,pkc->pc", N, sn[c])
-            err += np.bincount(e, dv * energy_density(star - h, Emat[e], numat[e]), minlength=nelem)
-        ref += np.bincount(e, dv * energy_density(h, Emat[e], numat[e]), minlength=nelem)
+            err += np.bincount(e, dv[sel] * energy_density(star - h, E[sel], nu[sel]), minlength=nelem)
+        ref += np.bincount(e, dv[sel] * energy_density(h, E[sel], nu[sel]), minlength=nelem)
     return (err if recovered else None), ref
+
+
+class ReferenceField:
+    """The stresses of a result `reference` (a much finer solution of the same bodies) anywhere
+    in its bodies: per material (the bodies are not mixed: a stress jumps across an interface), a
+    complete quadratic fitted by least squares to the stresses of the `k` Gauss points of the
+    reference nearest to the point (a linear fit where the quadratic is undetermined, their mean
+    where the linear one is too), evaluated at the point.  A local fit
+    rather than the linear interpolation over a Delaunay triangulation of the Gauss points: along
+    a straight boundary the rows of Gauss points make sliver triangles whose barycentric
+    coordinates came out in the thousands (a stress of -6800 interpolated from values about 1 on
+    the punch's Q8 meshes).  Built once, evaluated for many meshes."""
+
+    def __init__(self, reference, k=16, terms=6):
+        from scipy.spatial import cKDTree
+        m = reference.mesh
+        ge = m.gauss_element - 1
+        gp = m.gauss_coordinates.reshape(-1, 2)
+        sg = reference.last.field("stress_gauss")
+        gmat = m.material[ge]
+        self.path = reference.path
+        self.estimate = reference.last.estimated_error
+        self.dofs = 2 * len(m.coordinates)
+        self.k, self.terms = k, terms
+        self.fields = {}
+        for mat in np.unique(gmat):
+            src = np.where(gmat == mat)[0]
+            self.fields[int(mat)] = (cKDTree(gp[src]), gp[src], sg[src])
+
+    def __call__(self, points, material):
+        """Stresses (n, 4) at `points` (n, 2) of materials `material` (n)."""
+        out = np.full((len(points), 4), np.nan)
+        for mat in np.unique(material):
+            if int(mat) not in self.fields:
+                raise AdaptError("%s: no elements of material %d, which the mesh compared has"
+                                 % (self.path, mat))
+            at = np.where(material == mat)[0]
+            tree, xy, sg = self.fields[int(mat)]
+            k = min(self.k, len(xy))
+            dist, idx = tree.query(points[at], k=k)
+            idx = idx.reshape(len(at), k)
+            scale = np.maximum(np.max(dist.reshape(len(at), k), axis=1), 1e-300)[:, None]
+            d = (xy[idx] - points[at][:, None, :]) / scale[:, :, None]     # (n, k, 2)
+            full = np.concatenate([np.ones((len(at), k, 1)), d, d[:, :, :1] ** 2, d[:, :, :1] * d[:, :, 1:],
+                                   d[:, :, 1:] ** 2], axis=2)                      # (n, k, 6)
+            val = np.mean(sg[idx], axis=1)          # where no fit is determined: the mean
+            todo = np.ones(len(at), dtype=bool)
+            for terms in (self.terms, 3):           # quadratic; linear where that is undetermined
+                if terms > self.terms or not todo.any():
+                    continue
+                P = full[todo][:, :, :terms]
+                A = np.einsum("nki,nkj->nij", P, P)
+                ev = np.linalg.eigvalsh(A)
+                ok = ev[:, 0] > 1e-10 * ev[:, -1]
+                sel = np.where(todo)[0][ok]
+                val[sel] = np.linalg.solve(A[ok], np.einsum("nki,nkc->nic", P[ok], sg[idx[sel]]))[:, 0, :]
+                todo[sel] = False
+            out[at] = val
+        return out
+
+
+def reference_error(result, materials, reference):
+    """(true relative energy-norm error, ||sigma_ref - sigma_h||^2, ||u_h||^2) of the last step of
+    `result` against a much finer solution `reference` of the same bodies (an overkill mesh: a
+    Result, or its ReferenceField; or any function (points, materials) -> stresses (n, 4), a
+    closed form): the error energy ||sigma_ref - sigma_h||^2 = integral of (sigma_ref - sigma_h) : C^-1 (sigma_ref -
+    sigma_h) dV by the Gauss rules of `result`, sigma_ref interpolated from the reference's
+    Gauss points (ReferenceField), and the relative error in the estimate's convention,
+    sqrt(e^2 / (||u_h||^2 + e^2)).  Needs no Galerkin orthogonality (contact with initial gaps,
+    non-nested meshes); the reference's own error adds to e^2 about its square."""
+    m = result.mesh
+    ge, dv, _, E, nu = _gauss_volumes(result, materials)
+    gp = m.gauss_coordinates.reshape(-1, 2)
+    sh = result.last.field("stress_gauss")
+    field = reference if callable(reference) else ReferenceField(reference)
+    sr = field(gp, m.material[ge])
+    e2 = float(np.sum(dv * energy_density(sr - sh, E, nu)))
+    u2 = float(np.sum(dv * energy_density(sh, E, nu)))
+    return math.sqrt(e2 / (u2 + e2)), e2, u2
 
 
 def energy_norm2(result, materials, step=None):
@@ -609,6 +701,39 @@ def msh_nodes(path):
     raise AdaptError("%s: no $Nodes section" % path)
 
 
+# the nodes of surface A along a contact take this share of the size both sides ask for there
+FINER_A = 0.8
+
+
+def interface_sizes(result, nodal, finer=FINER_A):
+    """The nodal sizes `nodal` (npoin) with surface A made the finer side of every contact: the
+    size of each pair's node a at most `finer` times the smallest size of the nodes of surface B
+    it is coupled with (its `master_nodes`, or node b).  Each body's side of an interface is
+    meshed from that body's own indicators, and where surface B came out finer than surface A a
+    node of A faced more nodes of B than MATCHING SEGMENT takes (7; the program stops with
+    E-SEGMENT-SIDE -- met on the second adaptive mesh of a Q8 Hertz model, surface B beside the
+    contact zone 2.5 times as fine as A); a node of A a little finer than B spans at most three
+    edges of B.  Surface B is not changed (taking the smaller of the two sides' sizes on both
+    would pass each pair's minimum on to the next through their shared nodes of B, along the
+    whole interface).  Node-to-node pairs are matched by no remeshing (docs/adaptivity.md)."""
+    c = result.contact
+    if c is None or not c.npair:
+        return nodal
+    nodal = np.array(nodal, dtype=float)
+    base = nodal.copy()
+    for j in range(c.npair):
+        b = []
+        if "master_nodes" in c:
+            b = [int(v) - 1 for v, w in zip(c.master_nodes[j], c.master_weights[j]) if v > 0 and w != 0]
+        if not b:
+            b = [int(c.node_b[j]) - 1]
+        sizes = [base[k] for k in b if 0 <= k < len(base) and np.isfinite(base[k])]
+        a = int(c.node_a[j]) - 1
+        if sizes and np.isfinite(base[a]):
+            nodal[a] = min(nodal[a], finer * min(sizes))
+    return nodal
+
+
 def write_size_view(path, result, hnew):
     """A gmsh post-processing view (.pos) of the sizes at the corners of the current mesh: the
     smallest of the sizes wanted by the elements around each node."""
@@ -619,6 +744,7 @@ def write_size_view(path, result, hnew):
     for k in range(4):
         valid = (nn != 3) | (k < 3)
         np.minimum.at(nodal, m.connectivity[valid, k] - 1, hnew[valid])
+    nodal = interface_sizes(result, nodal)
     with open(path, "w") as f:
         f.write('View "size" {\n')
         for e in range(len(nn)):
