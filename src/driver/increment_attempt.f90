@@ -20,7 +20,7 @@ module increment_attempt
          augment_multipliers, &
                                 drop_regularisation, regularise_slip, &
                                 anchor_regularisation, release_anchors, settle_frozen
-   use contact_start, only: increment_pressure
+   use contact_start, only: increment_pressure, separating_load
    use model, only: model_t
    use step_audit, only: check_finite_springs
    use roundoff, only: resolvable_limit
@@ -211,6 +211,29 @@ contains
                                            &(tangential)'
    end subroutine describe_singular
 
+   !> A singular system with every contact pair open under a load that pulls
+   !! the bodies apart is no failure of the method: a body that only the contact
+   !! held has no equilibrium (a tensile load on a body resting on another, or a
+   !! load factor taken below zero: the factors of INCREMENTS are the total
+   !! targets of the load cases, not their increments).  The message says so,
+   !! with the resultant that pulls.
+   subroutine lift_off(m, st, fext, status)
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(in) :: st
+      real(dp), intent(in) :: fext(:, :)      !! (2, npoin) the loads at the end of the increment
+      type(status_t), intent(inout) :: status
+      real(dp) :: fsep
+      if (size(st%md) == 0) return
+      if (any(st%md%closed)) return
+      fsep = separating_load(m, fext)
+      if (.not. (fsep > 0.0_dp)) return
+      status%message = status%message//'; every contact pair is open: the loads pull the bodies '// &
+                       'apart (resultant '//rtoa(fsep)//' along the contact normal, away from '// &
+                       'the other side) and nothing else holds them, so no equilibrium exists '// &
+                       '(the factors of INCREMENTS are the total targets of the load cases, '// &
+                       'not their increments: a load unloaded to zero has the target 0)'
+   end subroutine lift_off
+
    !> One attempt at an increment of the load factors dlam from the committed
    !! state: solve, check the springs, repeat until they keep their modes and
    !! balance (or the cap).  Nothing is committed here; the contact system
@@ -242,6 +265,7 @@ contains
       type(status_t) :: singular
       integer :: spent
       call attempt_pass(an, m, st, dlam, carry, fext_new, first, .false., att, status)
+      if (status%code == STAT_SINGULAR .and. an%has_contact) call lift_off(m, st, fext_new, status)
       if (status%code /= STAT_SINGULAR .or. .not. (an%has_contact .and. an%returning .and. &
                                                    st%has_rough)) then
          return
