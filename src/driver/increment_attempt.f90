@@ -247,10 +247,10 @@ contains
       fsep = separating_load(m, fext)
       ! (a resultant within 1e-6 of the run's forces is round-off of a zero load, no pull)
       if (.not. (fsep > 1.0e-6_dp*force_scale)) return
-      status%message = status%message//'; every contact pair is open: the loads pull the bodies '// &
-                       'apart (resultant '//rtoa(fsep)//' along the contact normal, away from '// &
-                       'the other side) and nothing else holds them, so no equilibrium exists '// &
-                       '(the factors of INCREMENTS are the total targets of the load cases, '// &
+      status%message = status%message//'; every contact pair is open: the loads pull the '// &
+                       'bodies apart (resultant '//rtoa(fsep)//' along the contact normal, '// &
+                       'away from the other side) and nothing else holds them, so no '// &
+                       'equilibrium exists (the factors of INCREMENTS are the total targets of the load cases, '// &
                        'not their increments: a load unloaded to zero has the target 0)'
    end subroutine lift_off
 
