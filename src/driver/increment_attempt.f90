@@ -250,8 +250,9 @@ contains
       status%message = status%message//'; every contact pair is open: the loads pull the '// &
                        'bodies apart (resultant '//rtoa(fsep)//' along the contact normal, '// &
                        'away from the other side) and nothing else holds them, so no '// &
-                       'equilibrium exists (the factors of INCREMENTS are the total targets of the load cases, '// &
-                       'not their increments: a load unloaded to zero has the target 0)'
+                       'equilibrium exists (the factors of INCREMENTS are the total targets '// &
+                       'of the load cases, not their increments: a load unloaded to zero has '// &
+                       'the target 0)'
    end subroutine lift_off
 
    !> One attempt at an increment of the load factors dlam from the committed
