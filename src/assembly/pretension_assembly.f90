@@ -50,6 +50,14 @@ module pretension_assembly
       ! spring to ground of stiffness kground on each held reference node's axial equation
       logical, allocatable :: held(:)           !! (n) the spring is in the solver's base
       real(dp), allocatable :: kground(:)       !! (n) its stiffness: the sum of the springs
+      ! the holding forces of the locked increments (x and the ground spring's reaction) stay in
+      ! the external force on the reference node; an increment that changes the section's force
+      ! takes them out again (pretension_control's release_holding): the committed sum, the sum
+      ! after the last attempt and the reference node's external force that attempt left
+      real(dp), allocatable :: hsum(:)          !! (n) [force] committed
+      real(dp), allocatable :: hsum_out(:)      !! (n) [force] after the last attempt
+      real(dp), allocatable :: fref_out(:)      !! (n) [force] after the last attempt
+      logical :: tried = .false.                !! an attempt has been made
    end type pretension_run_t
 
 contains
@@ -69,6 +77,10 @@ contains
       if (allocated(m%pretensions)) pr%n = size(m%pretensions)
       allocate (pr%sections(pr%n), pr%jac(pr%n, pr%n), pr%x_last(pr%n))
       allocate (pr%held(pr%n), pr%kground(pr%n))
+      allocate (pr%hsum(pr%n), pr%hsum_out(pr%n), pr%fref_out(pr%n))
+      pr%hsum = 0.0_dp
+      pr%hsum_out = 0.0_dp
+      pr%fref_out = 0.0_dp
       pr%jac = 0.0_dp
       pr%x_last = 0.0_dp
       pr%held = .false.

@@ -10,7 +10,7 @@ module contact_start
    use restraint_check, only: find_bodies
    implicit none
    private
-   public :: init_contact_states, start_pressure, increment_pressure
+   public :: init_contact_states, start_pressure, increment_pressure, separating_load
 
 contains
 
@@ -213,6 +213,42 @@ contains
          end do
       end function increment_resultant
    end subroutine increment_pressure
+
+   !> The load that pulls the bodies of the contact apart: the resultant of the
+   !! nodal forces f on the bodies of side A (those holding the pairs' nodes
+   !! A), projected on the mean contact normal of all pairs (from B into A), in
+   !! the direction away from B; when side A carries no load, the resultant on
+   !! the bodies of side B, away from A.  Negative: the load presses them
+   !! together; 0 without pairs.  For the diagnosis of a singular system whose
+   !! pairs are all open (a load that pulls a body off the only support it has).
+   real(dp) function separating_load(m, f) result(fsep)
+      type(model_t), intent(in) :: m
+      real(dp), intent(in) :: f(:, :)           !! (2, npoin) nodal forces
+      integer, allocatable :: body(:), nolinks(:, :)
+      logical, allocatable :: in_a(:), in_b(:), use(:)
+      real(dp) :: nbar(2), fa(2), fb(2)
+      integer :: nbody, j
+      fsep = 0.0_dp
+      if (size(m%contact%pairs) == 0) return
+      use = m%contact%pairs%area > 0.0_dp
+      if (.not. any(use)) return
+      nbar = 0.0_dp
+      do j = 1, size(m%contact%pairs)
+         if (use(j)) nbar = nbar + m%contact%pairs(j)%area*m%contact%pairs(j)%n
+      end do
+      nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
+      allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
+      call find_bodies(m, nolinks, body, nbody)
+      call pair_bodies(m, body, nbody, use, in_a, in_b)
+      fa = [sum(f(1, :), mask=in_a), sum(f(2, :), mask=in_a)]
+      fb = [sum(f(1, :), mask=in_b .and. .not. in_a), sum(f(2, :), mask=in_b .and. .not. in_a)]
+      ! n points from B into A: a load pulling A off B points along +n on A, -n on B
+      if (abs(dot_product(fa, nbar)) > 0.0_dp) then
+         fsep = dot_product(fa, nbar)
+      else
+         fsep = -dot_product(fb, nbar)
+      end if
+   end function separating_load
 
    !> The nodes of the bodies that hold side A (in_a) and side B (in_b) of
    !! the pairs flagged in `use` (a rigid body's reference node, body 0: in_b

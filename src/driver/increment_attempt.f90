@@ -19,8 +19,9 @@ module increment_attempt
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, &
          augment_multipliers, &
                                 drop_regularisation, regularise_slip, &
-                                anchor_regularisation, release_anchors, settle_frozen
-   use contact_start, only: increment_pressure
+                                anchor_regularisation, release_anchors, settle_frozen, &
+                                open_held_tension
+   use contact_start, only: increment_pressure, separating_load
    use model, only: model_t
    use step_audit, only: check_finite_springs
    use roundoff, only: resolvable_limit
@@ -91,6 +92,9 @@ module increment_attempt
       real(dp) :: duscale = 0.0_dp                 !! largest displacement increment of a converged
                                                    !! attempt that was not a hold (the scale of a
                                                    !! hold's corrections)
+      real(dp), allocatable :: utot(:, :)          !! (2, npoin) the displacements of the
+                                                   !! converged attempts before this one (the
+                                                   !! committed total, at least; out_of_balance)
       integer :: nchanged = 0                      !! pairs that changed their
                                                    !! mode in the last solution
       integer :: first_changed = 0                 !! the first of them
@@ -159,11 +163,18 @@ contains
    !! The out-of-balance force lives on the contact equations (rhs: the
    !! spring forces the solution predicted minus the actual ones), but it
    !! inherits the round-off of the solution: the bodies' forces K du of the
-   !! increment are resolved only to about epsilon |K| |du|.  The magnitude
-   !! that cancels at a contact dof is |K_i| |du_i| (|K_i| the row's absolute
-   !! sum, absrow) plus the spring forces there; the largest over the pairs'
-   !! dofs is the magnitude.  For bodies of ordinary stiffness its round-off
-   !! is 1e-15 to 1e-12 of the load increment, and rtol is TOLR.
+   !! increment are resolved only to about epsilon |K| |du|, and the forces
+   !! of the whole history to epsilon |K| |u|: the increments' solutions each
+   !! balance their loads against K du to round-off, so the spring forces of
+   !! the total state balance K u only to the round-off of the total (which
+   !! the equilibrium audit's floor measures too, step_audit's imbalance_limit).
+   !! The magnitude that cancels at a contact dof is |K_i| max(|du_i|, |u_i|)
+   !! (|K_i| the row's absolute sum, absrow; u = att%utot + du the total
+   !! displacement, when att%utot is kept) plus the spring forces there; the
+   !! largest over the pairs' dofs is the magnitude.  For bodies of ordinary
+   !! stiffness its round-off is 1e-15 to 1e-12 of the load increment, and
+   !! rtol is TOLR; at a zero-load increment of a stiff body held by soft
+   !! pairs the total is what cancels (generated scene 21).
    pure subroutine out_of_balance(an, pairs, rhs, rvec, fscale, tol, att)
       type(analysis_t), intent(in) :: an
       type(contact_pair_t), intent(in) :: pairs(:)
@@ -172,20 +183,25 @@ contains
       real(dp), intent(in) :: fscale              !! the force rnorm is relative to
       real(dp), intent(in) :: tol                 !! CONTACT CONVERGE TOLR
       type(attempt_t), intent(inout) :: att       !! du in, rnorm and rtol out
-      real(dp) :: mag
+      real(dp) :: mag, u
       integer :: j, k, ieq, ip
+      logical :: total
       att%rnorm = 0.0_dp
       att%rtol = tol
       if (size(rhs) == 0) return
       att%rnorm = maxval(abs(rhs))/fscale
       mag = 0.0_dp
+      total = allocated(att%utot)
+      if (total) total = all(shape(att%utot) == shape(att%du))
       if (allocated(an%absrow) .and. allocated(an%springs%peq)) then
          do j = 1, size(pairs)
             do k = 1, 2*pairs(j)%nn
                ieq = an%springs%peq(k, j)
                if (ieq <= 0) cycle
                ip = pairs(j)%nodes((k + 1)/2)
-               mag = max(mag, an%absrow(ieq)*abs(att%du(2 - mod(k, 2), ip)) + abs(rvec(k, j)))
+               u = abs(att%du(2 - mod(k, 2), ip))
+               if (total) u = max(u, abs(att%du(2 - mod(k, 2), ip) + att%utot(2 - mod(k, 2), ip)))
+               mag = max(mag, an%absrow(ieq)*u + abs(rvec(k, j)))
             end do
          end do
       end if
@@ -212,6 +228,34 @@ contains
                                            'has no support once they open (normal) or slip &
                                            &(tangential)'
    end subroutine describe_singular
+
+   !> A singular system with every contact pair open under a load that pulls
+   !! the bodies apart is no failure of the method: a body that only the contact
+   !! held has no equilibrium (a tensile load on a body resting on another, or a
+   !! load factor taken below zero: the factors of INCREMENTS are the total
+   !! targets of the load cases, not their increments).  The message says so,
+   !! with the resultant that pulls (more than 1e-6 of the largest nodal force of
+   !! the run: at zero load the resultant is round-off, and the failure is the
+   !! zero-load class, docs/robustness.md).
+   subroutine lift_off(m, st, fext, force_scale, status)
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(in) :: st
+      real(dp), intent(in) :: fext(:, :)      !! (2, npoin) the loads at the end of the increment
+      real(dp), intent(in) :: force_scale     !! the largest nodal force of the run so far
+      type(status_t), intent(inout) :: status
+      real(dp) :: fsep
+      if (size(st%md) == 0) return
+      if (any(st%md%closed)) return
+      fsep = separating_load(m, fext)
+      ! (a resultant within 1e-6 of the run's forces is round-off of a zero load, no pull)
+      if (.not. (fsep > 1.0e-6_dp*force_scale)) return
+      status%message = status%message//'; every contact pair is open: the loads pull the '// &
+                       'bodies apart (resultant '//rtoa(fsep)//' along the contact normal, '// &
+                       'away from the other side) and nothing else holds them, so no '// &
+                       'equilibrium exists (the factors of INCREMENTS are the total targets '// &
+                       'of the load cases, not their increments: a load unloaded to zero has '// &
+                       'the target 0)'
+   end subroutine lift_off
 
    !> One attempt at an increment of the load factors dlam from the committed
    !! state: solve, check the springs, repeat until they keep their modes and
@@ -244,6 +288,9 @@ contains
       type(status_t) :: singular
       integer :: spent
       call attempt_pass(an, m, st, dlam, carry, fext_new, first, .false., att, status)
+      if (status%code == STAT_SINGULAR .and. an%has_contact) then
+         call lift_off(m, st, fext_new, an%force_scale, status)
+      end if
       if (status%code /= STAT_SINGULAR .or. .not. (an%has_contact .and. an%returning .and. &
                                                    st%has_rough)) then
          return
@@ -280,7 +327,15 @@ contains
                 changed(an%npair))
       rvec = 0.0_dp
       rpred = 0.0_dp
-      if (.not. allocated(att%du)) allocate (att%du(2, m%npoin), att%carry(an%map%neq))
+      if (.not. allocated(att%du)) then
+         allocate (att%du(2, m%npoin), att%carry(an%map%neq), att%utot(2, m%npoin))
+         att%du = 0.0_dp
+         att%utot = 0.0_dp
+      end if
+      ! the total displacement so far: a converged attempt's increment (the full field once
+      ! the step was accepted) joins it (one converged but not accepted, a step cut for
+      ! chatter, raises the round-off floor a little: a bound, not a result)
+      if (att%converged) att%utot = att%utot + att%du
       att%du = 0.0_dp
       att%solutions = 0
       att%repeats = 0
@@ -336,6 +391,9 @@ contains
             if (an%map%neq > 0 .and. maxval(abs(fext_new)) <= 1.0e-12_dp*an%force_scale) then
                hold = maxval(abs(rhs - carry)) <= 1.0e-12_dp*an%force_scale
                if (hold) fscale = max(fscale, att%fscale)
+               ! the second attempt of a singular increment to zero load: measured
+               ! against the run's forces (zero_load_scale)
+               if (slip_reg) fscale = max(fscale, an%force_scale)
             end if
          end if
          ! the solution at (at least) the contact equations' dofs
@@ -380,6 +438,23 @@ contains
          if (att%rnorm <= att%rtol .and. &
              (.not. newton .or. dnorm <= m%contact%opts%tol_displacement .or. &
               (iter == 1 .and. .not. an%pred%predicted))) then
+            ! a pair held below its zero-force point with a tension beyond the limit is off
+            ! its law: it opens and the increment goes on (open_held_tension)
+            if (newton .and. .not. anchored) then
+               call open_held_tension(m%contact, st, att%rtol*fscale, changed)
+               if (any(changed)) then
+                  call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
+                  call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, &
+                                      m%contact%opts%tol_residual, att)
+                  att%changing = .true.
+                  att%nchanged = count(changed)
+                  att%first_changed = findloc(changed, .true., dim=1)
+                  att%repeats = att%repeats + 1
+                  rshare = 0.0_dp
+                  need_matrix = .true.
+                  cycle
+               end if
+            end if
             if (anchored) then
                ! the law's forces: what the anchored springs carried is out-of-balance
                ! force, which must be within the limit
