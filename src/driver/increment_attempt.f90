@@ -379,22 +379,7 @@ contains
          end if
          if (iter == 1) then
             call an%springs%subtract_prescribed(m%contact%pairs, ddu, rhs)
-            ! an increment driven only through springs of prescribed nodes (a rigid
-            ! body's reference node belongs to no element) has no other force to
-            ! measure its out-of-balance force against
-            if (fscale <= 1.0e-300_dp .and. an%map%neq > 0) then
-               fscale = max(maxval(abs(rhs)), 1.0e-300_dp)
-            end if
-            ! an increment that holds a zero load (nothing but the carried out-of-balance
-            ! force drives it) is measured against the last increment's scale
-            ! (the load, a sum of increments, is zero to round-off of the run's forces)
-            if (an%map%neq > 0 .and. maxval(abs(fext_new)) <= 1.0e-12_dp*an%force_scale) then
-               hold = maxval(abs(rhs - carry)) <= 1.0e-12_dp*an%force_scale
-               if (hold) fscale = max(fscale, att%fscale)
-               ! the second attempt of a singular increment to zero load: measured
-               ! against the run's forces (zero_load_scale)
-               if (slip_reg) fscale = max(fscale, an%force_scale)
-            end if
+            call first_force_scale(an, att, rhs, carry, fext_new, slip_reg, fscale, hold)
          end if
          ! the solution at (at least) the contact equations' dofs
          call an%sys%solve(rhs, ddu, status)
@@ -512,6 +497,32 @@ contains
          end if
       end subroutine update_modes
    end subroutine attempt_pass
+
+   !> The force scale of an attempt's out-of-balance force, settled at its first
+   !! solve (rhs: the first right-hand side, carry: the out-of-balance force carried
+   !! in): an increment driven only through springs of prescribed nodes (a rigid
+   !! body's reference node belongs to no element) has no other force to measure
+   !! it against; an increment that holds a zero load (nothing but the carried
+   !! out-of-balance force drives it: hold) is measured against the last
+   !! increment's scale (the load, a sum of increments, is zero to round-off of
+   !! the run's forces); the second attempt of a singular increment to zero load
+   !! against the run's forces (zero_load_scale).
+   subroutine first_force_scale(an, att, rhs, carry, fext_new, slip_reg, fscale, hold)
+      type(analysis_t), intent(in) :: an
+      type(attempt_t), intent(in) :: att
+      real(dp), intent(in) :: rhs(:), carry(:), fext_new(:, :)
+      logical, intent(in) :: slip_reg              !! the second attempt (regularised slip)
+      real(dp), intent(inout) :: fscale
+      logical, intent(inout) :: hold
+      if (fscale <= 1.0e-300_dp .and. an%map%neq > 0) then
+         fscale = max(maxval(abs(rhs)), 1.0e-300_dp)
+      end if
+      if (an%map%neq > 0 .and. maxval(abs(fext_new)) <= 1.0e-12_dp*an%force_scale) then
+         hold = maxval(abs(rhs - carry)) <= 1.0e-12_dp*an%force_scale
+         if (hold) fscale = max(fscale, att%fscale)
+         if (slip_reg) fscale = max(fscale, an%force_scale)
+      end if
+   end subroutine first_force_scale
 
    !> 1 when the out-of-balance force of an evaluation is within its round-off
    !! floor (att%rtol less TOLR, module roundoff), else 0.  The next solution's
