@@ -304,6 +304,17 @@ contains
       type(error_list_t), intent(inout) :: errors
       real(dp) :: lf, ll, s_in, r_lo, r_hi
       fit = .true.
+      ! a missing NORMAL card or a non-positive constant: the reader has reported it (its
+      ! logarithm would be -infinity, a floating-point trap in a checked build)
+      if (.not. (law%cn_in > 0.0_dp .and. law%cn2_in > 0.0_dp .and. law%m_in > 0.0_dp .and. &
+                 law%m2_in > 0.0_dp)) then
+         fit = .false.
+         return
+      end if
+      if (law%r_given .and. .not. law%r_in > 0.0_dp) then
+         fit = .false.
+         return
+      end if
       select case (law%units)
       case (UNITS_KGF_UM)
          lf = log(KGF_PER_NMM2)
