@@ -34,6 +34,8 @@ from k2d.results import first_nonfinite
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 GMSH_CARD = re.compile(r'^GMSH\s+(\S+)', re.M)
 MAX_PROCESS_INCREMENTS = 1000   # longer decks are left out of the whole-program corpus
+MAX_DEBUG_PROCESS_MESH_BYTES = 80_000   # larger meshes are left out of a checked build's
+                                        # whole-program corpus
 LOCATED = re.compile(r'^\S+:\d+(:\d+)?: error \[[A-Z-]+\]: ', re.M)
 ERROR_LINE = re.compile(r'error \[[A-Z-]+\]: ')
 # one BLAS thread per run: the runs go in parallel (--jobs)
@@ -69,7 +71,10 @@ def corpus_entries(traps=False, process=False):
     leaves out the decks of more than MAX_PROCESS_INCREMENTS increments (long
     analyses by design, e.g. tests/decks/options/many_increments.dat: 4 000
     increments, 5 s of CPU alone, over the 60 s hang limit of wall time on a
-    loaded machine); the in-process readers take every deck."""
+    loaded machine), and in a Debug build (traps) also the decks whose mesh file is larger than
+    MAX_DEBUG_PROCESS_MESH_BYTES (a checked, sanitized build runs a model 10-20 times slower:
+    tests/decks/bolt/joint_separation, 10 s in Release, passed the 60 s hang limit); the
+    in-process readers take every deck."""
     entries = []
     for top in ('inputs', 'tests'):
         for d, _, files in sorted(os.walk(os.path.join(ROOT, top))):
@@ -94,6 +99,9 @@ def corpus_entries(traps=False, process=False):
                     if not os.path.exists(os.path.join(d, mm.group(1))) or '/' in mm.group(1):
                         continue
                     mesh = mm.group(1)
+                    if process and traps and \
+                            os.path.getsize(os.path.join(d, mesh)) > MAX_DEBUG_PROCESS_MESH_BYTES:
+                        continue
                 entries.append((path, mesh))
     return entries
 
