@@ -85,6 +85,11 @@ def parser():
                    help="unit convention of the cards, and of E, H and the pressures (default KGF_UM: um, kgf/cm2)")
     p.add_argument("--model-units", default="mm,N/mm2", metavar="LENGTH,PRESSURE",
                    help="the model's units for --units MODEL (default mm,N/mm2)")
+    p.add_argument("--size", type=float, nargs="+", metavar="L",
+                   help="LX [LY]: the sample's physical size, for a height map that does not carry it (a matrix "
+                   "of heights as text); in --length-unit; LY defaults to square pixels")
+    p.add_argument("--length-unit", help="unit of the heights and of --size, for a height map that does not "
+                   "carry one (m, mm, um, nm)")
     p.add_argument("--pressure-unit", help="unit of --E1, --E2, --hardness and --pressure-range "
                    "(kgf/cm2, N/mm2, MPa; default: the cards' pressure unit)")
     p.add_argument("--E1", type=float, required=True, help="Young's modulus of the first body")
@@ -154,7 +159,7 @@ def topography(args, units):
         return 2
     path = args.surfaces[0]
     try:
-        surfs = [topo.read_surface(f) for f in args.surfaces]
+        surfs = [topo.read_surface(f, args.size, args.length_unit) for f in args.surfaces]
         surface = surfs[0] if len(surfs) == 1 else topo.composite(*surfs)
         tf = topo.calibrate(surface, path, Es, pmin, pmax, units, hardness=H, points=args.points, out=args.out,
                             same_exponent=args.same_exponent)

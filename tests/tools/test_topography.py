@@ -218,6 +218,41 @@ class SampleFile(unittest.TestCase):
         self.assertNotIn("Traceback", r.stderr)
         self.assertFalse(os.path.exists(os.path.join(WORK, "topography", "corrupt", "corrupt_bem.csv")))
 
+    def test_text_matrix_with_size(self):
+        # the sample's heights as a plain-text matrix (um) that carries no size or unit: with
+        # --size 400 --length-unit um the same surface, so the same cards as from the X3P file
+        # (the text keeps 10 significant digits of heights ~1 um: the fit sees them to ~1e-10,
+        # far below the cards' seven digits); without --size, or with --size on the X3P
+        # (which gives its own), a refusal naming the file
+        out = os.path.join(WORK, "topography", "text")
+        os.makedirs(out, exist_ok=True)
+        txt = os.path.join(out, "sample_um.txt")
+        np.savetxt(txt, tp.read_surface(os.path.join(DATA, "sample.x3p")).heights * 1.0e3, fmt="%.10g")
+        common = ["--E1", "3000", "--nu1", "0.4", "--pressure-unit", "N/mm2", "--pressure-range", "3", "8",
+                  "--no-convergence", "--no-plot"]
+        cards = []
+        for args in ([os.path.join(DATA, "sample.x3p"), "--out", os.path.join(out, "x3p")],
+                     [txt, "--size", "400", "--length-unit", "um", "--out", os.path.join(out, "txt")]):
+            r = run_cli(*(args + common))
+            print(r.stdout, r.stderr)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertIn("64 x 64 grid points, 0.4 x 0.4 mm", r.stdout)
+            cards.append(re.search(r"^NORMAL\s+(\S+)\s+(\S+)", r.stdout, re.M).groups())
+        self.assertEqual(cards[0], cards[1])
+        r = run_cli(txt, "--length-unit", "um", "--out", os.path.join(out, "nosize"), *common)
+        self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+        self.assertRegex(r.stderr, r"sample_um\.txt: error: the file does not give the sample's physical size "
+                                   r"\(a height matrix of 64 x 64 grid points\); expected --size LX \[LY\]")
+        self.assertFalse(os.path.exists(os.path.join(out, "nosize")))
+        r = run_cli(txt, "--size", "400", "--out", os.path.join(out, "nounit"), *common)
+        self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+        self.assertIn("expected --length-unit", r.stderr)
+        r = run_cli(os.path.join(DATA, "sample.x3p"), "--size", "1", "--out", os.path.join(out, "twice"), *common)
+        self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+        self.assertRegex(r.stderr, r"sample\.x3p: error: the file gives its physical size \(0\.0004 x 0\.0004 m\); "
+                                   r"expected no --size")
+        self.assertNotIn("Traceback", r.stderr)
+
     def test_missing_file(self):
         r = run_cli(os.path.join(DATA, "no_such.x3p"), "--E1", "3000", "--nu1", "0.4", "--pressure-range", "3", "8")
         self.assertEqual(r.returncode, 2)

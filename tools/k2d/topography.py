@@ -109,10 +109,57 @@ def level(h):
     return h - (A @ coef).reshape(h.shape)
 
 
-def read_surface(path):
+def _unreadable(path, e):
+    if type(e).__name__ == "CannotDetectFileFormat":
+        why = "the file is damaged, or not in a format SurfaceTopography reads"
+    else:
+        why = "%s (%s)" % (str(e).strip().splitlines()[0] if str(e).strip() else "no message", type(e).__name__)
+    raise cal.DataError(path, 0, "cannot read the surface: %s; expected a height map such as .x3p, .sur, "
+                        ".opd, .plu, .datx, .nc, or a matrix of heights as text with --size and --length-unit"
+                        % why)
+
+
+def _metadata(reader, path, size, length_unit):
+    """The keywords that give a file its physical size and length unit where it carries none
+    (a plain-text or .npy height matrix): from --size and --length-unit; a file that carries
+    them keeps its own, and giving them again is refused (DataError) rather than ignored."""
+    ch = reader.default_channel
+    has_size = ch.physical_sizes is not None
+    has_unit = ch.unit is not None
+    kw = {}
+    if size is not None:
+        if has_size:
+            raise cal.DataError(path, 0, "the file gives its physical size (%s %s); expected no --size"
+                                % (" x ".join("%g" % float(s) for s in ch.physical_sizes), ch.unit or ""))
+        if len(size) not in (1, 2) or not all(math.isfinite(s) and s > 0.0 for s in size):
+            raise cal.DataError(path, 0, "--size %s: expected one or two positive lengths (LX [LY])"
+                                % " ".join("%g" % s for s in size))
+        n = tuple(ch.nb_grid_pts)
+        if len(n) == 1 or len(size) == 2:
+            kw["physical_sizes"] = tuple(size[:len(n)])
+        else:                                  # LY from LX, the pixel square
+            kw["physical_sizes"] = (size[0], size[0] * n[1] / n[0])
+    elif not has_size:
+        raise cal.DataError(path, 0, "the file does not give the sample's physical size (a height matrix of "
+                            "%s grid points); expected --size LX [LY] (in --length-unit)"
+                            % " x ".join(str(n) for n in ch.nb_grid_pts))
+    if length_unit is not None:
+        if has_unit:
+            raise cal.DataError(path, 0, "the file gives its length unit (%s); expected no --length-unit" % ch.unit)
+        if length_unit not in HEIGHT_UNITS:
+            raise cal.DataError(path, 0, "--length-unit %s: expected one of %s"
+                                % (length_unit, ", ".join(sorted(HEIGHT_UNITS))))
+        kw["unit"] = length_unit
+    elif not has_unit:
+        raise cal.DataError(path, 0, "the file does not give the unit of its heights and size; expected "
+                            "--length-unit (one of %s)" % ", ".join(sorted(HEIGHT_UNITS)))
+    return kw
+
+
+def read_surface(path, size=None, length_unit=None):
     """Read a measured height map with SurfaceTopography; DataError (exit 2) where it cannot be
-    used: unreadable or unknown format, no physical size or unit, missing points, a line scan,
-    too few grid points, no roughness."""
+    used: unreadable or unknown format, no physical size or unit (and none given by size, in
+    length_unit), missing points, a line scan, too few grid points, no roughness."""
     try:
         from SurfaceTopography import open_topography
     except ImportError as e:                                           # pragma: no cover
@@ -122,14 +169,13 @@ def read_surface(path):
     try:
         reader = open_topography(path)
         ch = reader.default_channel
-        t = reader.topography()
     except Exception as e:                                             # the readers raise many kinds
-        if type(e).__name__ == "CannotDetectFileFormat":
-            why = "the file is damaged, or not in a format SurfaceTopography reads"
-        else:
-            why = "%s (%s)" % (str(e).strip().splitlines()[0] if str(e).strip() else "no message", type(e).__name__)
-        raise cal.DataError(path, 0, "cannot read the surface: %s; expected a height map such as .x3p, .sur, "
-                            ".opd, .plu, .datx, .nc" % why)
+        _unreadable(path, e)
+    kw = _metadata(reader, path, size, length_unit)
+    try:
+        t = reader.topography(**kw)
+    except Exception as e:                                             # the readers raise many kinds
+        _unreadable(path, e)
     if t.dim != 2:
         raise cal.DataError(path, 0, "channel \"%s\" is a line scan (%d-dimensional); expected an areal height map"
                             % (ch.name, t.dim))
