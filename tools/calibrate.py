@@ -5,7 +5,7 @@
     tools/calibrate.py tangent  DATA.csv [--units ...] [--hardening auto|on|off] [--S S] [--replay]
     tools/calibrate.py friction DATA.csv [--units ...]
     tools/calibrate.py topography SURFACE [SURFACE2] --E1 E --nu1 NU [--E2 E --nu2 NU] [--hardness H]
-                       --pressure-range PMIN PMAX [--units ...] [--replay]
+                       --pressure-range PMIN PMAX [--units ...] [--size LX [LY] --length-unit U] [--replay]
 
 DATA.csv: a header line naming the columns with their units in brackets, then the rows in the
 order they were measured (lines starting with # are comments):
