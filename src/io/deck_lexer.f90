@@ -315,6 +315,24 @@ contains
       end if
    end function deck_field_text
 
+   !> The tail of a number field's error where the text of the field before it runs on
+   !! across column c1 (no blank at c1 - 1 and c1): a word or number one column too long,
+   !! or shifted, which the fixed columns read as the start of this field.  Empty otherwise.
+   function run_on_hint(this, ic, c1) result(h)
+      class(deck_t), intent(in) :: this
+      integer, intent(in) :: ic, c1
+      character(len=:), allocatable :: h
+      character(len=:), allocatable :: edge
+      h = ''
+      if (c1 <= 1) return
+      edge = this%field_text(ic, c1 - 1, c1)
+      if (len(edge) < 2) return
+      if (edge(1:1) == ' ' .or. edge(2:2) == ' ') return
+      h = ': the text of column '//itoa(c1 - 1)//' runs on into column '//itoa(c1)// &
+          ' ("'//edge//'"); the fields are fixed columns (docs/deck-format.md): shorten or '// &
+          'shift the entry before this field'
+   end function run_on_hint
+
    !> Read an integer field.  Blank gives `default` when present, else an error.
    subroutine deck_get_int(this, ic, c1, c2, card, field, val, ok, default)
       class(deck_t), intent(inout) :: this
@@ -344,7 +362,7 @@ contains
       if (.not. is_integer_text(f)) then
          call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
                             itoa(c1)//'-'//itoa(c2)//') expected an integer, found "'// &
-                            shown(f)//'"')
+                            shown(f)//'"'//run_on_hint(this, ic, c1))
          ok = .false.
          return
       end if
@@ -384,7 +402,7 @@ contains
       if (.not. is_real_text(f)) then
          call this%error_at(ic, c1, 'E-NUMBER', card//': field '//field//' (columns '// &
                             itoa(c1)//'-'//itoa(c2)//') expected a real number, found "'// &
-                            shown(f)//'"')
+                            shown(f)//'"'//run_on_hint(this, ic, c1))
          ok = .false.
          return
       end if
