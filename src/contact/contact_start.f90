@@ -112,16 +112,37 @@ contains
       nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
       fn = abs(dot_product(resultant(in_a), nbar))
       if (.not. (fn > 0.0_dp)) fn = abs(dot_product(resultant(in_b .and. .not. in_a), nbar))
+      if (.not. (fn > 0.0_dp)) fn = preload()
       if (.not. (fn > 0.0_dp) .or. .not. (aa > 0.0_dp)) then
          call status%set(STAT_INPUT, &
                          'contact: the first increment applies no force normal to the contact '// &
-                         'surface on either body (it is displacement-driven), so the start &
-                         &pressure p_m of eq. (4.1) '// &
+                         'surface on either body and no bolt preload (it is displacement-'// &
+                         'driven), so the start pressure p_m of eq. (4.1) '// &
                          'cannot be computed; give it on a CONTACT START card (PM)')
          return
       end if
       st%p_start = fn/aa
    contains
+      !> The clamping force of the bolts preloaded in the first increment (a joint whose
+      !! first stage is the preload alone): the sections' forces F dlambda, each along its
+      !! axis, projected on the mean normal.  The section's force acts on its reference
+      !! node, which belongs to no body, and the clamped parts carry it through the
+      !! interfaces of the grip (docs/bolts.md).
+      real(dp) function preload()
+         real(dp) :: f(2)
+         integer :: k
+         preload = 0.0_dp
+         if (.not. allocated(m%pretensions)) return
+         do k = 1, size(m%pretensions)
+            associate (p => m%pretensions(k))
+               if (p%icase < 1 .or. p%icase > size(dlam1)) cycle
+               f = 0.0_dp
+               f(p%axis) = p%force*dlam1(p%icase)
+               preload = preload + abs(dot_product(f, nbar))
+            end associate
+         end do
+      end function preload
+
       !> Resultant of the first load increment on the flagged nodes.
       function resultant(flag) result(f)
          logical, intent(in) :: flag(:)

@@ -16,6 +16,7 @@ module increment_attempt
    use assembly, only: coupling_t, load_increment
    use contact_assembly, only: contact_springs_t
    use contact_types, only: contact_options_t, contact_pair_t
+   use contact_pair_types, only: pair_mode_t
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, &
          augment_multipliers, &
                                 drop_regularisation, regularise_slip, &
@@ -99,6 +100,22 @@ module increment_attempt
                                                    !! mode in the last solution
       integer :: first_changed = 0                 !! the first of them
    end type attempt_t
+
+   !> What a Newton solution started from, for the line search (line_search).
+   type :: step_start_t
+      real(dp), allocatable :: du(:, :)            !! the attempt's increment before the solve
+      real(dp), allocatable :: rhs(:)              !! the out-of-balance force it solved for
+      real(dp), allocatable :: rvec(:, :)          !! the pairs' forces it started from
+      type(pair_mode_t), allocatable :: md(:)      !! the pairs' modes and forces there
+      real(dp), allocatable :: fn(:), ft(:), dun(:), dut(:)
+      real(dp) :: rnorm = 0.0_dp                   !! its relative out-of-balance force
+      logical :: chatter = .false.
+   end type step_start_t
+
+   !> A Newton solution whose out-of-balance force grows by more than this
+   !! factor, no pair changing its mode, is shortened (line_search).
+   real(dp), parameter :: LS_GROWTH = 10.0_dp
+   integer, parameter :: LS_HALVINGS = 8           !! shortest step 2^-8 of the solution
 
 contains
 
@@ -321,6 +338,7 @@ contains
       integer :: iter, maxit
       real(dp) :: fscale, dnorm, rshare
       logical :: need_matrix, done, again, newton, hold, anchored
+      type(step_start_t) :: start
 
       allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), &
                 rpred(an%springs%nd, an%npair), &
@@ -381,6 +399,7 @@ contains
             call an%springs%subtract_prescribed(m%contact%pairs, ddu, rhs)
             call first_force_scale(an, att, rhs, carry, fext_new, slip_reg, fscale, hold)
          end if
+         if (newton .and. iter > 1) call keep_start(att, st, rhs, rvec, start)
          ! the solution at (at least) the contact equations' dofs
          call an%sys%solve(rhs, ddu, status)
          if (.not. status%ok()) then
@@ -407,6 +426,12 @@ contains
          ddu = 0.0_dp
          ! ... against the actual ones, after the mode checks
          call update_modes(again)
+         if (newton .and. iter > 1 .and. .not. (again .or. slip_reg)) then
+            call line_search(an, m, st, start, first, fscale, rpred, rvec, rhs, changed, att, &
+                             again, dnorm)
+            if (again) need_matrix = .true.
+            if (.not. again) rshare = roundoff_share(att, m%contact%opts%tol_residual)
+         end if
          if (again) cycle
          ! a force at its round-off floor and within 1e-3 TOLR: the next correction would not
          ! count (roundoff_share), so it is not made (where the predictor is used)
@@ -497,6 +522,113 @@ contains
          end if
       end subroutine update_modes
    end subroutine attempt_pass
+
+   !> Keep what a Newton solution starts from (line_search).
+   subroutine keep_start(att, st, rhs, rvec, start)
+      type(attempt_t), intent(in) :: att
+      type(contact_state_t), intent(in) :: st
+      real(dp), intent(in) :: rhs(:), rvec(:, :)
+      type(step_start_t), intent(inout) :: start
+      start%du = att%du
+      start%rhs = rhs
+      start%rvec = rvec
+      start%md = st%md
+      start%fn = st%fn
+      start%ft = st%ft
+      start%dun = st%dun
+      start%dut = st%dut
+      start%rnorm = att%rnorm
+      start%chatter = st%chatter
+   end subroutine keep_start
+
+   !> Backtracking line search on the out-of-balance force (Newton, rough pairs):
+   !! a solution after which the force grew by more than LS_GROWTH, no pair
+   !! changing its mode, is shortened to alpha = 1/2, 1/4, ... (at most
+   !! LS_HALVINGS times) of itself until the force is below the one it started
+   !! from, or the shortest step; the step of the smallest force is kept.  The
+   !! bodies are linear, so at alpha the force left is
+   !!     r(alpha) = (1 - alpha) r_0 + (f_0 + alpha (f_pred - f_0) - f(alpha)),
+   !! r_0 the force the solution was for, f_0 the pairs' forces it started from,
+   !! f_pred their linearisation at alpha = 1 and f(alpha) the laws' forces at
+   !! the shortened step (evaluate_pairs, from the modes it started from).  A
+   !! pair that changes its mode at a shortened step ends the search there (the
+   !! matrix is renewed: again).  The contact system scales what it keeps of the
+   !! solution (scale_last).
+   !!
+   !! Why: a steep normal law (p ~ u^(1/m), 1/m = 4 to 7 for the m of measured
+   !! surfaces, docs/calibration.md) is nearly flat at a pair just closed and
+   !! steep once pressed: Newton's full step from one throws the closure to the
+   !! other and back, and the iterates cycle with the force 1e3 times its size
+   !! every second solution (a pair at the edge of a bolted joint's contact zone
+   !! when the service load is taken off: docs/robustness.md).  The search does
+   !! not move a converging iteration: its force does not grow.
+   subroutine line_search(an, m, st, start, first, fscale, rpred, rvec, rhs, changed, att, &
+                          again, dnorm)
+      type(analysis_t), intent(inout) :: an
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(inout) :: st
+      type(step_start_t), intent(in) :: start
+      logical, intent(in) :: first
+      real(dp), intent(in) :: fscale
+      real(dp), intent(inout) :: rpred(:, :), rvec(:, :), rhs(:)
+      logical, intent(inout) :: changed(:)
+      type(attempt_t), intent(inout) :: att
+      logical, intent(inout) :: again
+      real(dp), intent(inout) :: dnorm
+      real(dp), allocatable :: step(:, :), fpred(:, :)
+      real(dp) :: alpha, best, best_alpha
+      integer :: k
+      if (.not. allocated(start%md) .or. .not. an%sys%scales_last()) return
+      if (.not. (att%rnorm > LS_GROWTH*start%rnorm)) return
+      step = att%du - start%du
+      fpred = rpred
+      best = att%rnorm
+      best_alpha = 1.0_dp
+      alpha = 1.0_dp
+      do k = 1, LS_HALVINGS
+         alpha = 0.5_dp*alpha
+         call evaluate_at(alpha)
+         if (again) exit
+         if (att%rnorm < best) then
+            best = att%rnorm
+            best_alpha = alpha
+         end if
+         if (att%rnorm <= start%rnorm) exit
+      end do
+      if (.not. again .and. alpha /= best_alpha) then
+         alpha = best_alpha
+         call evaluate_at(alpha)
+      end if
+      if (alpha < 1.0_dp) then
+         call an%sys%scale_last(alpha)
+         dnorm = alpha*dnorm
+      end if
+   contains
+      !> The pairs and the out-of-balance force at alpha times the solution.
+      subroutine evaluate_at(a)
+         real(dp), intent(in) :: a
+         st%md = start%md
+         st%fn = start%fn
+         st%ft = start%ft
+         st%dun = start%dun
+         st%dut = start%dut
+         st%chatter = start%chatter
+         att%du = start%du + a*step
+         rpred = start%rvec + a*(fpred - start%rvec)
+         call evaluate_pairs(m%contact, st, att%du, changed, first)
+         call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
+         rhs = rhs + (1.0_dp - a)*start%rhs
+         call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, &
+                             m%contact%opts%tol_residual, att)
+         again = any(changed)
+         if (again) then
+            att%changing = .true.
+            att%nchanged = count(changed)
+            att%first_changed = findloc(changed, .true., dim=1)
+            att%repeats = att%repeats + 1
+         end if
+      end subroutine evaluate_at
+   end subroutine line_search
 
    !> The force scale of an attempt's out-of-balance force, settled at its first
    !! solve (rhs: the first right-hand side, carry: the out-of-balance force carried

@@ -59,6 +59,8 @@ module condensed_system
       real(dp), allocatable :: w1(:)         !! (neq) B^-1 b of the first solve
       real(dp), allocatable :: rsum(:)       !! (n_c) sum of the later right-hand sides on c
       real(dp), allocatable :: zc(:)         !! (n_c) sum of dK_cc dv_c
+      real(dp), allocatable :: bc_last(:)    !! (n_c) the last later right-hand side on c
+      real(dp), allocatable :: zc_last(:)    !! (n_c) its dK_cc dv_c (scale_last)
       real(dp), allocatable :: xc(:)         !! (n_c) the contact part of a solution
       real(dp), allocatable :: work(:)       !! (neq)
    contains
@@ -69,6 +71,8 @@ module condensed_system
       procedure :: recover => condensed_recover
       procedure :: describe => condensed_describe
       procedure :: memory_bytes => condensed_memory
+      procedure :: scales_last => condensed_scales_last
+      procedure :: scale_last => condensed_scale_last
    end type condensed_system_t
 
 contains
@@ -150,6 +154,8 @@ contains
       this%first = .true.
       this%zc = 0.0_dp
       this%rsum = 0.0_dp
+      ! (allocated by the attempt's later solves only: scale_last)
+      if (allocated(this%bc_last)) deallocate (this%bc_last, this%zc_last)
    end subroutine condensed_begin_attempt
 
    !> (B + dK) dv = b: dv at the dofs of the contact equations.
@@ -170,6 +176,8 @@ contains
          ! b is zero off the contact equations: S_B w_c = S_B G b_c = b_c
          this%xc = b(this%ceq)
          this%rsum = this%rsum + this%xc
+         this%bc_last = this%xc
+         this%zc_last = this%zc
       end if
       call this%dense%solve(this%xc, status)
       if (.not. status%ok()) return
@@ -193,7 +201,27 @@ contains
       do k = 1, size(this%cdof, 2)
          du(this%cdof(1, k), this%cdof(2, k)) = this%xc(this%cdof(3, k))
       end do
+      if (allocated(this%zc_last)) this%zc_last = this%zc - this%zc_last
    end subroutine condensed_solve
+
+   pure logical function condensed_scales_last(this)
+      class(condensed_system_t), intent(in) :: this
+      associate (unused => this)
+      end associate
+      condensed_scales_last = .true.
+   end function condensed_scales_last
+
+   !> The last (later) solve as alpha times itself: its right-hand side in rsum
+   !! and its dK_cc dv_c in zc (the recovery is linear in both).
+   subroutine condensed_scale_last(this, alpha)
+      class(condensed_system_t), intent(inout) :: this
+      real(dp), intent(in) :: alpha
+      if (.not. allocated(this%bc_last)) return
+      this%rsum = this%rsum - (1.0_dp - alpha)*this%bc_last
+      this%zc = this%zc - (1.0_dp - alpha)*this%zc_last
+      this%bc_last = alpha*this%bc_last
+      this%zc_last = alpha*this%zc_last
+   end subroutine condensed_scale_last
 
    !> The attempt's increment at every free dof: w_1 + B^-1 E_c (rsum - zc).
    subroutine condensed_recover(this, du, need_full, status)

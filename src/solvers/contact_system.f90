@@ -55,6 +55,11 @@
 !!   full_system has nothing to recover, condensed_system recovers always).
 !!   The driver passes .false. for the steps of a contact run that are neither
 !!   written nor listed nor the last.
+!! * `scale_last(alpha)`, where `scales_last()` is true: the last solve (not the
+!!   attempt's first) counts as alpha times its solution (a line search that
+!!   shortened the step, increment_attempt): the caller scales the contact dofs
+!!   of du itself; the system scales what it keeps for `recover`.  A system that
+!!   cannot (the default) is never asked.
 module contact_system
    use kinds, only: dp, i8
    use errors, only: status_t
@@ -86,6 +91,8 @@ module contact_system
       procedure(memory_i), deferred :: memory_bytes
       procedure :: failed_equation
       procedure :: free
+      procedure :: scales_last
+      procedure :: scale_last
    end type contact_system_t
 
    abstract interface
@@ -198,6 +205,23 @@ contains
       end do
       c = pack([(k, k=1, neq)], mark)
    end function contact_equations
+   !> Whether the system can scale its last solve (scale_last): not by default.
+   pure logical function scales_last(this)
+      class(contact_system_t), intent(in) :: this
+      associate (unused => this)
+      end associate
+      scales_last = .false.
+   end function scales_last
+
+   !> The last solve counts as alpha times its solution (never called where
+   !! scales_last is false).
+   subroutine scale_last(this, alpha)
+      class(contact_system_t), intent(inout) :: this
+      real(dp), intent(in) :: alpha
+      associate (unused => this, unused2 => alpha)
+      end associate
+   end subroutine scale_last
+
    !> Where the contact equations sit, for the systems that condense onto
    !! them: ceq the distinct free equations of the pairs (sorted), pos (neq)
    !! the position of an equation in ceq (0 if none), ppos (nd, npair) the

@@ -23,6 +23,7 @@ module full_system
       procedure :: recover => full_recover
       procedure :: describe => full_describe
       procedure :: memory_bytes => full_memory
+      procedure :: scales_last => full_scales_last
    end type full_system_t
 
 contains
@@ -77,6 +78,14 @@ contains
          end do
       end do
    end subroutine full_solve
+
+   !> The solutions are complete in du: a scaled last solve needs nothing kept here.
+   pure logical function full_scales_last(this)
+      class(full_system_t), intent(in) :: this
+      associate (unused => this)
+      end associate
+      full_scales_last = .true.
+   end function full_scales_last
 
    !> The solutions were complete: du is the increment already.
    subroutine full_recover(this, du, need_full, status)

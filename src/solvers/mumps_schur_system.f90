@@ -97,6 +97,8 @@ module mumps_schur_system
       procedure :: describe => schur_describe
       procedure :: memory_bytes => schur_memory
       procedure, private :: proportional => schur_proportional
+      procedure :: scales_last => schur_scales_last
+      procedure :: scale_last => schur_scale_last
    end type mumps_schur_system_t
 
 contains
@@ -214,6 +216,22 @@ contains
          du(this%cdof(1, k), this%cdof(2, k)) = this%xc(this%cdof(3, k))
       end do
    end subroutine schur_solve
+
+   pure logical function schur_scales_last(this)
+      class(mumps_schur_system_t), intent(in) :: this
+      associate (unused => this)
+      end associate
+      schur_scales_last = .true.
+   end function schur_scales_last
+
+   !> The last solve as alpha times itself: its dv_c in the attempt's sum (the
+   !! expansion is linear in it); xc holds it until the next solve or recover.
+   subroutine schur_scale_last(this, alpha)
+      class(mumps_schur_system_t), intent(inout) :: this
+      real(dp), intent(in) :: alpha
+      this%xsum = this%xsum - (1.0_dp - alpha)*this%xc
+      this%xc = alpha*this%xc
+   end subroutine schur_scale_last
 
    !> The attempt's increment away from the contact equations: one expansion
    !! (or, postponed, the sum of several at the next need_full).
