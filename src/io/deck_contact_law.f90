@@ -246,6 +246,7 @@ contains
       logical :: ok
       ok = .true.
       call d%get_real(ic, 11, 20, 'CONTACT/TOLERANCE', 'TOL', v1, ok)
+      call check_tail(d, ic, 21, 'TOL in columns 11-20', ok)
       if (ok .and. .not. (v1 > 0.0_dp)) call d%error_at(ic, 11, 'E-CONTACT', &
          'CONTACT/TOLERANCE (columns 11-20) expected a positive distance, found '//rtoa(v1))
       if (ok) law%tol = v1

@@ -146,6 +146,7 @@ contains
       logical :: ok
       ok = .true.
       call d%get_int(ic, 11, 20, 'CONTACT/REPEATS', 'MAXREP', iv, ok)
+      call check_tail(d, ic, 21, 'MAXREP in columns 11-20', ok)
       if (ok .and. (iv < 1 .or. iv > 10000)) then
          call d%error_at(ic, 11, 'E-CONTACT', &
             'CONTACT/REPEATS (columns 11-20) expected 1..10000, found '//itoa(iv))

@@ -10,7 +10,7 @@ module deck_control_cards
    use strings, only: itoa, rtoa
    use deck_lexer, only: deck_t
    use model, only: model_t
-   use deck_blocks, only: is_block_card, next_data_card, skip_extra
+   use deck_blocks, only: is_block_card, next_data_card, skip_extra, check_tail
    implicit none
    private
 
@@ -166,6 +166,8 @@ contains
             call d%get_word(ic, 11, 20, 'OPTIONS', 'AUTOINC', val, ok)
             call d%get_real(ic, 21, 30, 'OPTIONS', 'MINFRAC', x, ok, default=1.0_dp/128.0_dp)
             call d%get_int(ic, 31, 40, 'OPTIONS', 'NEASY', iv, ok, default=4)
+            call check_tail(d, ic, 41, 'OPTIONS/AUTOINC', 'ON or OFF, MINFRAC, NEASY in columns 11-40', &
+                            ok)
             if (ok .and. all(val /= [character(len=3) :: 'ON', 'OFF'])) then
                call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: AUTOINC (columns 11-20) expected '// &
                                'ON or OFF, found "'//val//'"')
@@ -183,6 +185,7 @@ contains
             end if
          case ('RESULTS')
             call d%get_int(ic, 11, 20, 'OPTIONS', 'RESULTS', iv, ok)
+            call check_tail(d, ic, 21, 'OPTIONS/RESULTS', 'N in columns 11-20', ok)
             if (ok .and. iv < 1) then
                call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: RESULTS (columns 11-20) expected '// &
                                'the step interval of the result file, an integer >= 1, found '// &
