@@ -141,15 +141,13 @@ contains
       advice = '; reduce the increment size'
       if (.not. autoinc) advice = advice//', use OPTIONS AUTOINC'
       advice = advice//' or raise CONTACT REPEATS (now '//itoa(maxrep)//')'
-      if (att%changing .or. st%chatter) then
+      if (att%changing) then
          what = 'the contact states still change ('//itoa(att%nchanged)// &
                ' pair(s) in the last solution, '// &
                 'the first pair '//itoa(att%first_changed)//')'
-         if (st%chatter) then
-            what = what//'; a pair changed its state 6 times within the increment (chatter)'
-         end if
       else if (.not. (returning .or. st%has_ideal)) then
-         return
+         if (.not. st%chatter) return
+         what = 'the contact states kept changing'
       else if (st%has_ideal .and. att%rnorm <= 1.0e-8_dp .and. st%violation > st%tol_pen) then
          what = 'ideal contact still penetrates or slips by '//rtoa(st%violation)// &
                ' > the tolerance '// &
@@ -170,6 +168,9 @@ contains
          what = 'ideal contact: slipping pairs still off mu F_n after '//itoa(st%augmentations)// &
                 ' multiplier updates'
       end if
+      ! (a pair the guard froze in its mode: said beside the criterion that failed)
+      if (st%chatter) what = what//'; a pair changed its state 6 times within the increment and '// &
+                             'was held in its mode (chatter)'
       call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                       itoa(att%solutions)//' solutions: '//what//advice)
    end subroutine attempt_failure
