@@ -114,7 +114,7 @@ module increment_attempt
 
    !> A Newton solution whose out-of-balance force grows by more than this
    !! factor, no pair changing its mode, is shortened (line_search).
-   real(dp), parameter :: LS_GROWTH = 10.0_dp
+   real(dp), parameter :: LS_GROWTH = 2.0_dp
    integer, parameter :: LS_HALVINGS = 8           !! shortest step 2^-8 of the solution
 
 contains
