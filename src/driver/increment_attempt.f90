@@ -169,8 +169,8 @@ contains
                 ' multiplier updates'
       end if
       ! (a pair the guard froze in its mode: said beside the criterion that failed)
-      if (st%chatter) what = what//'; a pair changed its state 6 times within the increment and '// &
-                             'was held in its mode (chatter)'
+      if (st%chatter) what = what//'; a pair changed its state 6 times within the '// &
+                             'increment and was held in its mode (chatter)'
       call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                       itoa(att%solutions)//' solutions: '//what//advice)
    end subroutine attempt_failure

@@ -166,8 +166,8 @@ contains
             call d%get_word(ic, 11, 20, 'OPTIONS', 'AUTOINC', val, ok)
             call d%get_real(ic, 21, 30, 'OPTIONS', 'MINFRAC', x, ok, default=1.0_dp/128.0_dp)
             call d%get_int(ic, 31, 40, 'OPTIONS', 'NEASY', iv, ok, default=4)
-            call check_tail(d, ic, 41, 'OPTIONS/AUTOINC', 'ON or OFF, MINFRAC, NEASY in columns 11-40', &
-                            ok)
+            call check_tail(d, ic, 41, 'OPTIONS/AUTOINC', &
+                            'ON or OFF, MINFRAC, NEASY in columns 11-40', ok)
             if (ok .and. all(val /= [character(len=3) :: 'ON', 'OFF'])) then
                call d%error_at(ic, 11, 'E-OPTION', 'OPTIONS: AUTOINC (columns 11-20) expected '// &
                                'ON or OFF, found "'//val//'"')
