@@ -30,6 +30,7 @@ import time
 
 import numpy as np
 
+from . import adapt_mesh as am
 from .results import Result
 
 
@@ -745,6 +746,7 @@ def write_size_view(path, result, hnew):
         valid = (nn != 3) | (k < 3)
         np.minimum.at(nodal, m.connectivity[valid, k] - 1, hnew[valid])
     nodal = interface_sizes(result, nodal)
+    cells = [m.connectivity[e, :3 if nn[e] == 3 else 4] - 1 for e in range(len(nn))]
     with open(path, "w") as f:
         f.write('View "size" {\n')
         for e in range(len(nn)):
@@ -753,6 +755,9 @@ def write_size_view(path, result, hnew):
             f.write("S%s(%s){%s};\n" % ("T" if nc == 3 else "Q",
                                         ",".join("%.10g,%.10g,0" % (xy[i, 0], xy[i, 1]) for i in c),
                                         ",".join("%.6g" % nodal[i] for i in c)))
+        for corners, sizes in am.boundary_ghosts(xy, cells, nodal):
+            f.write("SQ(%s){%s};\n" % (",".join("%.10g,%.10g,0" % (x, y) for x, y in corners),
+                                       ",".join("%.6g" % v for v in sizes)))
         f.write("};\n")
 
 
@@ -867,8 +872,14 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
         row = _row(k, r, est, source, cpu, cpu_mesh + time.process_time() - t0, rc)
         row["method"] = tag
         row["h5"] = base + ".h5"
+        shape = am.quality(base + ".msh", limit=am.ANGLE_LIMIT)
+        row["max_angle"] = max(v for v in (shape["max_angle_quad"], shape["max_angle_tri"]) if math.isfinite(v))
+        row["quads_over_limit"] = shape["over_limit"]
         rows.append(row)
-        log("  %s step %d: %d DOFs, estimated error %.4g (%s), CPU %.2f s" % (tag, k, row["dofs"], est, source, cpu))
+        log("  %s step %d: %d DOFs, estimated error %.4g (%s), CPU %.2f s; largest angle %.1f deg%s"
+            % (tag, k, row["dofs"], est, source, cpu, row["max_angle"],
+               ", %d quadrilaterals beyond %g deg" % (shape["over_limit"], am.ANGLE_LIMIT)
+               if shape["over_limit"] else ""))
         if est <= target:
             break
         if uniform:
@@ -949,7 +960,8 @@ def richardson_table(rows):
 # ------------------------------------------------------------------------------- the report
 COLUMNS = ["method", "step", "elements", "dofs", "estimated_error", "source", "cpu_solve", "cpu_mesh",
            "cpu_cumulative", "peak_pressure", "width", "approach", "von_mises", "slip_share", "scheme",
-           "law_drift", "residual", "traction_limited", "singular_elements", "exit"]
+           "law_drift", "residual", "traction_limited", "singular_elements", "max_angle", "quads_over_limit",
+           "exit"]
 
 
 def cumulate(rows):
