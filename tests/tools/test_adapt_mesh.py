@@ -15,6 +15,9 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt_mesh.py [-v]
   quadrilateral beyond 150 degrees.  Without the ghost cells gmsh found no size on the arc
   outside the chords and left segments of several millimetres (a chord for the arc), with
   quadrilaterals up to 169 degrees beside them (the effectivity 0.61 of docs/adaptivity.md).
+  With the cylinder asking for 0.2 mm and the half-plane for 2 mm, one view per body restricted
+  to its entities keeps every segment of the arc within 0.3 mm, where the half-plane's ghost cells
+  reach into the contact's gap.
 """
 import os
 import shutil
@@ -125,6 +128,36 @@ class CurvedRemesh(unittest.TestCase):
         q = am.quality(msh)
         self.assertGreater(q["quads"], 100)
         self.assertEqual(q["over_limit"], 0, q)
+
+    def test_each_body_its_own_sizes(self):
+        # the cylinder asks for 0.2 mm, the half-plane for 2 mm: the half-plane's ghost cells reach
+        # 0.75 mm into the gap (a quarter of its 3 mm edges), over the cylinder's arc out to
+        # x = 4.7 mm; one view per body, restricted to the body's entities, keeps the cylinder's
+        # own size on its whole arc (without the restriction the arc took 2 mm segments there)
+        work = tempfile.mkdtemp(prefix="adapt_mesh_", dir=os.environ.get("K2D_TEST_WORK"))
+        self.addCleanup(shutil.rmtree, work, ignore_errors=True)
+        geo = os.path.join(ROOT, "inputs", "adapt", "hertz_uniform.geo")
+        start = os.path.join(work, "start.msh")
+        ad.gmsh_mesh(geo, start, start + ".log", factor=1.0)
+        r = _Result(start)
+        m = r.mesh
+        centre_y = np.array([m.coordinates[m.connectivity[e, :4] - 1, 1].mean() for e in range(len(m.element_nodes))])
+        small, large = 0.2, 2.0
+        hnew = np.where(centre_y > 0.0, small, large)
+        pos = os.path.join(work, "size.pos")
+        restrict = ad.write_size_view(pos, r, hnew, msh=start)
+        self.assertEqual(len(restrict), 2)                      # the two bodies matched
+        self.assertEqual(sorted(s for surf, _c, _p in restrict for s in surf), [1, 2])
+        msh = os.path.join(work, "next.msh")
+        ad.gmsh_mesh(geo, msh, msh + ".log", pos=pos, restrict=restrict)
+        xy, _ = am.read_msh2d(msh)
+        R = 15.0
+        pts = np.array([p for p in xy.values() if abs(np.hypot(p[0], p[1] - R) - R) < 1e-9 * R
+                        and p[1] < R - 1e-9])
+        pts = pts[np.argsort(np.arctan2(pts[:, 0], R - pts[:, 1]))]
+        seg = np.hypot(*np.diff(pts, axis=0).T)
+        self.assertGreater(len(seg), 80)                        # 23.6 mm of arc at 0.2 mm
+        self.assertLess(seg.max(), 1.5 * small, seg.max())
 
 
 if __name__ == "__main__":

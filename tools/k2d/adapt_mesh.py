@@ -141,3 +141,85 @@ def boundary_ghosts(xy, cells, nodal, depth=GHOST_DEPTH):
         out.append((np.array([xy[a], xy[b], xy[b] + d, xy[a] + d]),
                     np.array([nodal[a], nodal[b], nodal[b], nodal[a]])))
     return out
+
+
+def _components(ncells, cells):
+    """Component index of every cell: cells that share a node are in one component (a body)."""
+    parent = {}
+
+    def find(a):
+        while parent.setdefault(a, a) != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+    for c in cells:
+        r0 = find(int(c[0]))
+        for v in c[1:]:
+            r1 = find(int(v))
+            if r1 != r0:
+                parent[r1] = r0
+    roots = {}
+    return np.array([roots.setdefault(find(int(c[0])), len(roots)) for c in cells], dtype=int)
+
+
+def msh_bodies(path):
+    """The bodies of a .msh file (format 4.1, ASCII): [{"surfaces", "curves", "points": gmsh
+    entity tags, "nodes": node count, "centre": mean of the nodes}], one per set of 2-D
+    elements connected through shared nodes."""
+    bound = {1: {}, 2: {}}
+    block_cells, block_surface = [], []
+    with open(path) as f:
+        for line in f:
+            tag = line.strip()
+            if tag == "$Entities":
+                npt, ncu, nsu, _nvo = (int(v) for v in f.readline().split())
+                for _ in range(npt):
+                    f.readline()
+                for dim, n in ((1, ncu), (2, nsu)):
+                    for _ in range(n):
+                        v = f.readline().split()
+                        nphys = int(v[7])
+                        nb = int(v[8 + nphys])
+                        bound[dim][int(v[0])] = [abs(int(t)) for t in v[9 + nphys:9 + nphys + nb]]
+            elif tag == "$Elements":
+                nblocks = int(f.readline().split()[0])
+                for _ in range(nblocks):
+                    dim, ent, ety, n = (int(v) for v in f.readline().split())
+                    rows = [f.readline().split() for _ in range(n)]
+                    if dim == 2 and ety in CORNERS:
+                        for v in rows:
+                            block_cells.append([int(t) for t in v[1:1 + CORNERS[ety]]])
+                            block_surface.append(ent)
+    xy, _ = read_msh2d(path)
+    comp = _components(len(block_cells), block_cells)
+    out = []
+    for k in range(int(comp.max()) + 1 if len(comp) else 0):
+        sel = np.where(comp == k)[0]
+        surfaces = sorted({block_surface[i] for i in sel})
+        curves = sorted({c for s in surfaces for c in bound[2].get(s, [])})
+        points = sorted({p for c in curves for p in bound[1].get(c, [])})
+        nodes = sorted({t for i in sel for t in block_cells[i]})
+        out.append({"surfaces": surfaces, "curves": curves, "points": points, "nodes": len(nodes),
+                    "centre": np.mean([xy[t] for t in nodes], axis=0)})
+    return out
+
+
+def match_bodies(xy, cells, bodies):
+    """The body of `bodies` (msh_bodies of the mesh the result came from) of every cell of the
+    result's mesh (xy, cells: corner indices), matched by the corner-node count and the centre
+    of each connected set of cells; None when they do not match one to one."""
+    comp = _components(len(cells), cells)
+    ncomp = int(comp.max()) + 1 if len(comp) else 0
+    if ncomp != len(bodies):
+        return None
+    size = float(np.ptp(xy, axis=0).max()) or 1.0
+    which = {}
+    for k in range(ncomp):
+        nodes = np.unique(np.concatenate([cells[i] for i in np.where(comp == k)[0]]))
+        centre = xy[nodes].mean(axis=0)
+        cand = [b for b, body in enumerate(bodies) if body["nodes"] == len(nodes)
+                and np.hypot(*(body["centre"] - centre)) <= 1e-6 * size]
+        if len(cand) != 1 or cand[0] in which.values():
+            return None
+        which[k] = cand[0]
+    return np.array([which[c] for c in comp], dtype=int)
