@@ -18,6 +18,8 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt_mesh.py [-v]
   With the cylinder asking for 0.2 mm and the half-plane for 2 mm, one view per body restricted
   to its entities keeps every segment of the arc within 0.3 mm, where the half-plane's ghost cells
   reach into the contact's gap.
+* ExampleDecks (gmsh, kontakt2d): the three examples' .geo decks of inputs/adapt/ mesh and
+  solve to the end of their load histories, the contact carrying the whole load.
 """
 import os
 import shutil
@@ -158,6 +160,38 @@ class CurvedRemesh(unittest.TestCase):
         seg = np.hypot(*np.diff(pts, axis=0).T)
         self.assertGreater(len(seg), 80)                        # 23.6 mm of arc at 0.2 mm
         self.assertLess(seg.max(), 1.5 * small, seg.max())
+
+
+# the three examples as .geo decks (docs/adaptivity.md, "The example decks"): the load each body
+# carries through the contact [N]: the punch p0 (B/2) t, the sphere's and the cylinder's P
+EXAMPLES = {"punch_5_1": 1.2 * 50.0 * 10.0, "sphere_5_2": 0.28294212 * np.pi * 15.0 ** 2, "cylinder_5_3": 1.0e5}
+
+
+@unittest.skipIf(shutil.which("gmsh") is None, "gmsh not installed")
+class ExampleDecks(unittest.TestCase):
+    def test_start_meshes_solve(self):
+        # each example's .geo start mesh, made as tools/adapt.py makes it, solves to the end of its
+        # load history (exit code 0), and the contact carries the whole load (equilibrium of the
+        # loaded body, SPEC 7: 1e-8); its estimate is written and above zero
+        from k2d.build import find_or_build
+        exe = find_or_build(os.environ.get("K2D_EXECUTABLE"))
+        work = tempfile.mkdtemp(prefix="adapt_examples_", dir=os.environ.get("K2D_TEST_WORK"))
+        self.addCleanup(shutil.rmtree, work, ignore_errors=True)
+        for name, load in EXAMPLES.items():
+            with self.subTest(deck=name):
+                for ext in (".dat", ".geo"):
+                    shutil.copy(os.path.join(ROOT, "inputs", "adapt", name + ext), work)
+                msh = os.path.join(work, name + ".msh")
+                ad.gmsh_mesh(os.path.join(work, name + ".geo"), msh, msh + ".log")
+                h5 = os.path.join(work, name + ".h5")
+                r, _cpu, rc = ad.solve(exe, os.path.join(work, name + ".dat"), h5, os.path.join(work, name + ".lis"))
+                self.assertEqual(rc, 0)
+                fn = r.last.contact("force_normal")
+                self.assertAlmostEqual(float(np.sum(fn)) / load, 1.0, delta=1e-8)
+                eta, est, source = ad.indicator(r, ad.deck_materials(os.path.join(work, name + ".dat")))
+                self.assertEqual(source, "program")
+                self.assertGreater(est, 0.0)
+                self.assertEqual(len(eta), len(r.mesh.element_nodes))
 
 
 if __name__ == "__main__":
