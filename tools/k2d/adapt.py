@@ -739,11 +739,11 @@ def write_size_view(path, result, hnew, msh=None):
     """A gmsh post-processing view (.pos) of the sizes at the corners of the current mesh: the
     smallest of the sizes wanted by the elements around each node, with ghost cells beyond the
     boundary (k2d.adapt_mesh.boundary_ghosts).  With `msh`, the .msh the result was computed
-    on, one view per body (the cells connected through shared nodes), each to be restricted to
-    that body's surfaces, curves and points of the .geo: the ghosts of one body reach into the gap
-    of a contact and would otherwise give their sizes to the other body's surface there (a Q8
-    Hertz model's cylinder took the coarser sizes of the half-plane and stopped with
-    E-SEGMENT-SIDE).  Returns the entity lists [(surfaces, curves, points)] of the views, in
+    on, one view per body (the cells connected through shared nodes): the ghosts of one body
+    reach into the gap of a contact, and with one view of everything gmsh took either body's
+    size there (a Q8 Hertz model's cylinder took the coarser sizes of the half-plane and stopped
+    with E-SEGMENT-SIDE); gmsh_mesh meshes each body's inside from its own view and the curves
+    from the smallest size of the views.  Returns the entity lists [(surfaces, curves, points)] of the views, in
     their order in the file, or None for one view of everything (no `msh`, or its bodies do not
     match the result's)."""
     m = result.mesh
@@ -780,8 +780,9 @@ def write_size_view(path, result, hnew, msh=None):
 def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh", restrict=None):
     """Mesh `geo` into `msh` (format 4.1) with the sizes of the view `pos` as the only size
     field, or with the .geo's own sizes times `factor`; returns the CPU seconds of gmsh.  With
-    `restrict` (write_size_view's entity lists) `pos` holds one view per body, each restricted
-    to its body's entities, and the size is the smallest of them."""
+    `restrict` (write_size_view's entity lists) `pos` holds one view per body: the inside of a
+    body's surfaces is meshed from its own view, the curves and points from the smallest size
+    of the views that cover them."""
     if shutil.which(gmsh) is None:
         raise AdaptError("gmsh is needed to remesh %s (Debian package gmsh)" % geo)
     wrapper = os.path.splitext(msh)[0] + "_mesh.geo"
@@ -795,16 +796,23 @@ def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh", restrict=None):
             lines += ["Field[99001] = PostView;", "Field[99001].ViewIndex = PostProcessing.NbViews - 1;",
                       "Background Field = 99001;"]
         else:
+            # the inside of each body's surfaces from its own view only; its curves and points
+            # (the boundaries, contact surfaces among them) from every view that covers them, the
+            # smallest size winning: the sides of a contact may take each other's finer size (the
+            # half-plane under a punch's edge the punch's), never a coarser one
             mins = []
-            for k, (surfaces, curves, points) in enumerate(restrict):
-                fv, fr = 99001 + 2 * k, 99002 + 2 * k
+            all_curves = sorted({c for _s, cs, _p in restrict for c in cs})
+            all_points = sorted({q for _s, _c, ps in restrict for q in ps})
+            for k, (surfaces, _curves, _points) in enumerate(restrict):
+                fv, fr, fb = 99001 + 3 * k, 99002 + 3 * k, 99003 + 3 * k
                 lines += ["Field[%d] = PostView;" % fv,
                           "Field[%d].ViewIndex = PostProcessing.NbViews - %d;" % (fv, len(restrict) - k),
                           "Field[%d] = Restrict;" % fr, "Field[%d].InField = %d;" % (fr, fv),
                           "Field[%d].SurfacesList = {%s};" % (fr, ", ".join(map(str, surfaces))),
-                          "Field[%d].CurvesList = {%s};" % (fr, ", ".join(map(str, curves))),
-                          "Field[%d].PointsList = {%s};" % (fr, ", ".join(map(str, points)))]
-                mins.append(fr)
+                          "Field[%d] = Restrict;" % fb, "Field[%d].InField = %d;" % (fb, fv),
+                          "Field[%d].CurvesList = {%s};" % (fb, ", ".join(map(str, all_curves))),
+                          "Field[%d].PointsList = {%s};" % (fb, ", ".join(map(str, all_points)))]
+                mins += [fr, fb]
             lines += ["Field[99000] = Min;", "Field[99000].FieldsList = {%s};" % ", ".join(map(str, mins)),
                       "Background Field = 99000;"]
     with open(wrapper, "w") as f:
