@@ -30,6 +30,7 @@ import time
 
 import numpy as np
 
+from . import adapt_mesh as am
 from .results import Result
 
 
@@ -734,9 +735,17 @@ def interface_sizes(result, nodal, finer=FINER_A):
     return nodal
 
 
-def write_size_view(path, result, hnew):
+def write_size_view(path, result, hnew, msh=None):
     """A gmsh post-processing view (.pos) of the sizes at the corners of the current mesh: the
-    smallest of the sizes wanted by the elements around each node."""
+    smallest of the sizes wanted by the elements around each node, with ghost cells beyond the
+    boundary (k2d.adapt_mesh.boundary_ghosts).  With `msh`, the .msh the result was computed
+    on, one view per body (the cells connected through shared nodes): the ghosts of one body
+    reach into the gap of a contact, and with one view of everything gmsh took either body's
+    size there (a Q8 Hertz model's cylinder took the coarser sizes of the half-plane and stopped
+    with E-SEGMENT-SIDE); gmsh_mesh meshes each body's inside from its own view and the curves
+    from the smallest size of the views.  Returns the entity lists [(surfaces, curves, points)] of the views, in
+    their order in the file, or None for one view of everything (no `msh`, or its bodies do not
+    match the result's)."""
     m = result.mesh
     xy = m.coordinates
     nn = m.element_nodes
@@ -745,20 +754,35 @@ def write_size_view(path, result, hnew):
         valid = (nn != 3) | (k < 3)
         np.minimum.at(nodal, m.connectivity[valid, k] - 1, hnew[valid])
     nodal = interface_sizes(result, nodal)
+    cells = [m.connectivity[e, :3 if nn[e] == 3 else 4] - 1 for e in range(len(nn))]
+    bodies = am.msh_bodies(msh) if msh else None
+    which = am.match_bodies(xy, cells, bodies) if bodies else None
+    groups = [np.arange(len(cells))] if which is None else [np.where(which == b)[0] for b in range(len(bodies))]
+
+    def point(i):
+        return "%.10g,%.10g,0" % (xy[i, 0], xy[i, 1])
     with open(path, "w") as f:
-        f.write('View "size" {\n')
-        for e in range(len(nn)):
-            nc = 3 if nn[e] == 3 else 4
-            c = m.connectivity[e, :nc] - 1
-            f.write("S%s(%s){%s};\n" % ("T" if nc == 3 else "Q",
-                                        ",".join("%.10g,%.10g,0" % (xy[i, 0], xy[i, 1]) for i in c),
-                                        ",".join("%.6g" % nodal[i] for i in c)))
-        f.write("};\n")
+        for g, sel in enumerate(groups):
+            f.write('View "size%d" {\n' % g)
+            for e in sel:
+                c = cells[e]
+                f.write("S%s(%s){%s};\n" % ("T" if len(c) == 3 else "Q", ",".join(point(i) for i in c),
+                                            ",".join("%.6g" % nodal[i] for i in c)))
+            for corners, sizes in am.boundary_ghosts(xy, [cells[e] for e in sel], nodal):
+                f.write("SQ(%s){%s};\n" % (",".join("%.10g,%.10g,0" % (x, y) for x, y in corners),
+                                           ",".join("%.6g" % v for v in sizes)))
+            f.write("};\n")
+    if which is None:
+        return None
+    return [(b["surfaces"], b["curves"], b["points"]) for b in bodies]
 
 
-def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh"):
+def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh", restrict=None):
     """Mesh `geo` into `msh` (format 4.1) with the sizes of the view `pos` as the only size
-    field, or with the .geo's own sizes times `factor`; returns the CPU seconds of gmsh."""
+    field, or with the .geo's own sizes times `factor`; returns the CPU seconds of gmsh.  With
+    `restrict` (write_size_view's entity lists) `pos` holds one view per body: the inside of a
+    body's surfaces is meshed from its own view, the curves and points from the smallest size
+    of the views that cover them."""
     if shutil.which(gmsh) is None:
         raise AdaptError("gmsh is needed to remesh %s (Debian package gmsh)" % geo)
     wrapper = os.path.splitext(msh)[0] + "_mesh.geo"
@@ -767,9 +791,30 @@ def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh"):
         lines.append("Mesh.MeshSizeFactor = %.10g;" % factor)
     if pos is not None:
         lines += ["Mesh.MeshSizeFromPoints = 0;", "Mesh.MeshSizeFromCurvature = 0;",
-                  "Mesh.MeshSizeExtendFromBoundary = 0;", 'Merge "%s";' % os.path.abspath(pos),
-                  "Field[99001] = PostView;", "Field[99001].ViewIndex = PostProcessing.NbViews - 1;",
-                  "Background Field = 99001;"]
+                  "Mesh.MeshSizeExtendFromBoundary = 0;", 'Merge "%s";' % os.path.abspath(pos)]
+        if not restrict:
+            lines += ["Field[99001] = PostView;", "Field[99001].ViewIndex = PostProcessing.NbViews - 1;",
+                      "Background Field = 99001;"]
+        else:
+            # the inside of each body's surfaces from its own view only; its curves and points
+            # (the boundaries, contact surfaces among them) from every view that covers them, the
+            # smallest size winning: the sides of a contact may take each other's finer size (the
+            # half-plane under a punch's edge the punch's), never a coarser one
+            mins = []
+            all_curves = sorted({c for _s, cs, _p in restrict for c in cs})
+            all_points = sorted({q for _s, _c, ps in restrict for q in ps})
+            for k, (surfaces, _curves, _points) in enumerate(restrict):
+                fv, fr, fb = 99001 + 3 * k, 99002 + 3 * k, 99003 + 3 * k
+                lines += ["Field[%d] = PostView;" % fv,
+                          "Field[%d].ViewIndex = PostProcessing.NbViews - %d;" % (fv, len(restrict) - k),
+                          "Field[%d] = Restrict;" % fr, "Field[%d].InField = %d;" % (fr, fv),
+                          "Field[%d].SurfacesList = {%s};" % (fr, ", ".join(map(str, surfaces))),
+                          "Field[%d] = Restrict;" % fb, "Field[%d].InField = %d;" % (fb, fv),
+                          "Field[%d].CurvesList = {%s};" % (fb, ", ".join(map(str, all_curves))),
+                          "Field[%d].PointsList = {%s};" % (fb, ", ".join(map(str, all_points)))]
+                mins += [fr, fb]
+            lines += ["Field[99000] = Min;", "Field[99000].FieldsList = {%s};" % ", ".join(map(str, mins)),
+                      "Background Field = 99000;"]
     with open(wrapper, "w") as f:
         f.write("\n".join(lines) + "\n")
     rc, wall, cpu = run_cpu([gmsh, "-2", "-format", "msh41", wrapper, "-o", msh], log)
@@ -833,12 +878,12 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
     os.makedirs(wdir, exist_ok=True)
     with open(deck) as f:
         text = f.read()
-    rows, pos = [], None
-    r = hnew = None                 # the last result and its new sizes (from step 1 on)
+    rows, pos, restrict = [], None, None
+    r = hnew = r_msh = None         # the last result, its new sizes and its .msh (from step 1 on)
     for k in range(max_steps):
         base = os.path.join(wdir, "%s_%02d" % (name, k))
         cpu_mesh = gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos,
-                             factor=0.5 ** k if uniform else None)
+                             factor=0.5 ** k if uniform else None, restrict=restrict)
         # the predicted size of a mesh is approximate: one that came out beyond the budget, or
         # beyond 1.25 times the growth allowed, is made again with all sizes grown by the excess
         # (at most four times)
@@ -854,8 +899,8 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
             if dofs <= limit:
                 break
             hnew *= math.sqrt(dofs / want)
-            write_size_view(pos, r, hnew)
-            cpu_mesh += gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos)
+            restrict = write_size_view(pos, r, hnew, msh=r_msh)
+            cpu_mesh += gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos, restrict=restrict)
         if max_dofs and 2 * msh_nodes(base + ".msh") > max_dofs:
             rows[-1]["stop"] = "budget"
             break
@@ -867,8 +912,14 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
         row = _row(k, r, est, source, cpu, cpu_mesh + time.process_time() - t0, rc)
         row["method"] = tag
         row["h5"] = base + ".h5"
+        shape = am.quality(base + ".msh", limit=am.ANGLE_LIMIT)
+        row["max_angle"] = max(v for v in (shape["max_angle_quad"], shape["max_angle_tri"]) if math.isfinite(v))
+        row["quads_over_limit"] = shape["over_limit"]
         rows.append(row)
-        log("  %s step %d: %d DOFs, estimated error %.4g (%s), CPU %.2f s" % (tag, k, row["dofs"], est, source, cpu))
+        log("  %s step %d: %d DOFs, estimated error %.4g (%s), CPU %.2f s; largest angle %.1f deg%s"
+            % (tag, k, row["dofs"], est, source, cpu, row["max_angle"],
+               ", %d quadrilaterals beyond %g deg" % (shape["over_limit"], am.ANGLE_LIMIT)
+               if shape["over_limit"] else ""))
         if est <= target:
             break
         if uniform:
@@ -887,7 +938,8 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
         hnew, n_new = new_sizes(eta, h, p, target, max_el, rate=rate, max_growth=max_growth)
         hnew, row["traction_limited"] = limit_by_tractions(r, hnew, h, target)
         pos = base + "_size.pos"
-        write_size_view(pos, r, hnew)
+        r_msh = base + ".msh"
+        restrict = write_size_view(pos, r, hnew, msh=r_msh)
         row["cpu_mesh"] += time.process_time() - t0
     return rows
 
@@ -949,7 +1001,8 @@ def richardson_table(rows):
 # ------------------------------------------------------------------------------- the report
 COLUMNS = ["method", "step", "elements", "dofs", "estimated_error", "source", "cpu_solve", "cpu_mesh",
            "cpu_cumulative", "peak_pressure", "width", "approach", "von_mises", "slip_share", "scheme",
-           "law_drift", "residual", "traction_limited", "singular_elements", "exit"]
+           "law_drift", "residual", "traction_limited", "singular_elements", "max_angle", "quads_over_limit",
+           "exit"]
 
 
 def cumulate(rows):

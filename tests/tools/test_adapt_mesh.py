@@ -1,0 +1,198 @@
+#!/usr/bin/python3
+"""Tests of the size view's ghost cells and the mesh-shape measure of tools/adapt.py
+(k2d.adapt_mesh; docs/adaptivity.md, "Mesh quality").
+
+Run by ctest (tests/tools/CMakeLists.txt: tools_adapt_mesh) with PYTHONPATH=<source>/tools;
+by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt_mesh.py [-v]
+
+* Angles: the largest interior angle of a square (90), of a quadrilateral with a known obtuse
+  corner and of a reflex (non-convex) one, either orientation.
+* Ghosts: the ghost cells of a chord-sided mesh of a quarter disc cover the arc between every two
+  boundary nodes (where the old mesh's cells, chords, end), carry the sizes of their edge's
+  nodes, and lie outside the cells.
+* CurvedRemesh (gmsh): hertz_uniform.geo's cylinder remeshed from a size view of its own start
+  mesh asking for 1 mm everywhere: every segment of the contact arc at most 1.5 mm and no
+  quadrilateral beyond 150 degrees.  Without the ghost cells gmsh found no size on the arc
+  outside the chords and left segments of several millimetres (a chord for the arc), with
+  quadrilaterals up to 169 degrees beside them (the effectivity 0.61 of docs/adaptivity.md).
+  With the cylinder asking for 0.2 mm and the half-plane for 2 mm, one view per body restricted
+  to its entities keeps every segment of the arc within 0.3 mm, where the half-plane's ghost cells
+  reach into the contact's gap.
+* ExampleDecks (gmsh, kontakt2d): the three examples' .geo decks of inputs/adapt/ mesh and
+  solve to the end of their load histories, the contact carrying the whole load.
+"""
+import os
+import shutil
+import tempfile
+import unittest
+
+import numpy as np
+
+from k2d import adapt as ad
+from k2d import adapt_mesh as am
+from k2d.build import ROOT
+
+
+def inside(P, pt):
+    """pt inside the convex polygon P (either orientation), boundary included to 1e-12."""
+    s = []
+    for i in range(len(P)):
+        a, b = P[i], P[(i + 1) % len(P)]
+        s.append((b[0] - a[0]) * (pt[1] - a[1]) - (b[1] - a[1]) * (pt[0] - a[0]))
+    s = np.array(s)
+    return bool(np.all(s >= -1e-12) or np.all(s <= 1e-12))
+
+
+class Angles(unittest.TestCase):
+    def test_known_polygons(self):
+        sq = [[0, 0], [1, 0], [1, 1], [0, 1]]
+        # a convex quadrilateral whose corner (1, -0.1) has the angle 180 - 2 atan(0.1) deg
+        obtuse = [[0, 0], [1, -0.1], [2, 0], [1, 1]]
+        reflex = [[0, 0], [2, 0], [1, 0.5], [1, 2]]       # the corner (1, 0.5) turns inwards
+        got = am.polygon_max_angles([sq, obtuse, reflex, sq[::-1], obtuse[::-1]])
+        want_obtuse = 180.0 - 2.0 * np.degrees(np.arctan(0.1))
+        a, b = np.array([2.0, 0.0]) - [1, 0.5], np.array([1.0, 2.0]) - [1, 0.5]
+        want_reflex = 360.0 - np.degrees(np.arccos(a @ b / np.linalg.norm(a) / np.linalg.norm(b)))
+        np.testing.assert_allclose(got, [90.0, want_obtuse, want_reflex, 90.0, want_obtuse], atol=1e-9)
+        self.assertGreater(want_reflex, 180.0)
+
+
+class Ghosts(unittest.TestCase):
+    def test_arc_covered(self):
+        # a quarter disc R = 1 as a fan of triangles from the centre: its arc is 8 chords
+        R, n = 1.0, 8
+        th = np.linspace(0.0, 0.5 * np.pi, n + 1)
+        xy = np.vstack([[0.0, 0.0], np.column_stack([R * np.cos(th), R * np.sin(th)])])
+        cells = [[0, i + 1, i + 2] for i in range(n)]
+        nodal = np.linspace(0.1, 0.5, len(xy))
+        ghosts = am.boundary_ghosts(xy, cells, nodal)
+        # boundary edges: the 8 chords and the two radii
+        self.assertEqual(len(ghosts), n + 2)
+        for corners, sizes in ghosts:
+            ends = [int(np.argmin(np.hypot(*(xy - c).T))) for c in corners[:2]]
+            np.testing.assert_allclose(sizes, nodal[[ends[0], ends[1], ends[1], ends[0]]])
+            far = 0.5 * (corners[2] + corners[3])
+            self.assertFalse(any(inside(xy[c], far) for c in cells))    # outwards
+        # every point of the arc lies in a cell or a ghost (the chords leave the arc outside
+        # the cells: the bulge h^2 / (8 R) = 0.031 for h = 0.39)
+        outside = 0
+        for t in np.linspace(0.0, 0.5 * np.pi, 401):
+            pt = (R * np.cos(t), R * np.sin(t))
+            in_cell = any(inside(xy[c], pt) for c in cells)
+            outside += not in_cell
+            self.assertTrue(in_cell or any(inside(g, pt) for g, _ in ghosts), pt)
+        self.assertGreater(outside, 300)        # the test is about those points
+
+
+class _Mesh:
+    def __init__(self, msh):
+        xyd, elems = am.read_msh2d(msh)
+        tags = sorted(xyd)
+        index = {t: i for i, t in enumerate(tags)}
+        self.coordinates = np.array([xyd[t] for t in tags])
+        self.element_nodes = np.array([len(c) for _e, c in elems])
+        self.connectivity = np.zeros((len(elems), 9), dtype=int)
+        for e, (_ety, c) in enumerate(elems):
+            self.connectivity[e, :len(c)] = [index[t] + 1 for t in c]
+
+
+class _Result:
+    contact = None
+
+    def __init__(self, msh):
+        self.mesh = _Mesh(msh)
+
+
+@unittest.skipIf(shutil.which("gmsh") is None, "gmsh not installed")
+class CurvedRemesh(unittest.TestCase):
+    def test_arc_resolved_and_no_flat_quads(self):
+        work = tempfile.mkdtemp(prefix="adapt_mesh_", dir=os.environ.get("K2D_TEST_WORK"))
+        self.addCleanup(shutil.rmtree, work, ignore_errors=True)
+        geo = os.path.join(ROOT, "inputs", "adapt", "hertz_uniform.geo")
+        start = os.path.join(work, "start.msh")
+        ad.gmsh_mesh(geo, start, start + ".log", factor=1.0)       # 3 mm everywhere
+        r = _Result(start)
+        size = 1.0
+        pos = os.path.join(work, "size.pos")
+        ad.write_size_view(pos, r, np.full(len(r.mesh.element_nodes), size))
+        msh = os.path.join(work, "next.msh")
+        ad.gmsh_mesh(geo, msh, msh + ".log", pos=pos)
+        # the arc's nodes (curve 1, its end points included) in order along it
+        xy, _ = am.read_msh2d(msh)
+        R = 15.0
+        pts = np.array([p for p in xy.values() if abs(np.hypot(p[0], p[1] - R) - R) < 1e-9 * R
+                        and p[1] < R - 1e-9])
+        pts = pts[np.argsort(np.arctan2(pts[:, 0], R - pts[:, 1]))]
+        seg = np.hypot(*np.diff(pts, axis=0).T)
+        # the arc is 0.5 pi R = 23.6 mm: at 1 mm about 24 segments; 1.5 mm allows gmsh's rounding
+        self.assertGreater(len(seg), 15)
+        self.assertLess(seg.max(), 1.5 * size, seg.max())
+        q = am.quality(msh)
+        self.assertGreater(q["quads"], 100)
+        self.assertEqual(q["over_limit"], 0, q)
+
+    def test_each_body_its_own_sizes(self):
+        # the cylinder asks for 0.2 mm, the half-plane for 2 mm: the half-plane's ghost cells reach
+        # 0.75 mm into the gap (a quarter of its 3 mm edges), over the cylinder's arc out to
+        # x = 4.7 mm; one view per body, restricted to the body's entities, keeps the cylinder's
+        # own size on its whole arc (without the restriction the arc took 2 mm segments there)
+        work = tempfile.mkdtemp(prefix="adapt_mesh_", dir=os.environ.get("K2D_TEST_WORK"))
+        self.addCleanup(shutil.rmtree, work, ignore_errors=True)
+        geo = os.path.join(ROOT, "inputs", "adapt", "hertz_uniform.geo")
+        start = os.path.join(work, "start.msh")
+        ad.gmsh_mesh(geo, start, start + ".log", factor=1.0)
+        r = _Result(start)
+        m = r.mesh
+        centre_y = np.array([m.coordinates[m.connectivity[e, :4] - 1, 1].mean() for e in range(len(m.element_nodes))])
+        small, large = 0.2, 2.0
+        hnew = np.where(centre_y > 0.0, small, large)
+        pos = os.path.join(work, "size.pos")
+        restrict = ad.write_size_view(pos, r, hnew, msh=start)
+        self.assertEqual(len(restrict), 2)                      # the two bodies matched
+        self.assertEqual(sorted(s for surf, _c, _p in restrict for s in surf), [1, 2])
+        msh = os.path.join(work, "next.msh")
+        ad.gmsh_mesh(geo, msh, msh + ".log", pos=pos, restrict=restrict)
+        xy, _ = am.read_msh2d(msh)
+        R = 15.0
+        pts = np.array([p for p in xy.values() if abs(np.hypot(p[0], p[1] - R) - R) < 1e-9 * R
+                        and p[1] < R - 1e-9])
+        pts = pts[np.argsort(np.arctan2(pts[:, 0], R - pts[:, 1]))]
+        seg = np.hypot(*np.diff(pts, axis=0).T)
+        self.assertGreater(len(seg), 80)                        # 23.6 mm of arc at 0.2 mm
+        self.assertLess(seg.max(), 1.5 * small, seg.max())
+
+
+# the three examples as .geo decks (docs/adaptivity.md, "The example decks"): the load each body
+# carries through the contact [N]: the punch p0 (B/2) t, the sphere's and the cylinder's P
+EXAMPLES = {"punch_5_1": 1.2 * 50.0 * 10.0, "sphere_5_2": 0.28294212 * np.pi * 15.0 ** 2, "cylinder_5_3": 1.0e5}
+
+
+@unittest.skipIf(shutil.which("gmsh") is None, "gmsh not installed")
+class ExampleDecks(unittest.TestCase):
+    def test_start_meshes_solve(self):
+        # each example's .geo start mesh, made as tools/adapt.py makes it, solves to the end of its
+        # load history (exit code 0), and the contact carries the whole load (equilibrium of the
+        # loaded body, SPEC 7: 1e-8); its estimate is written and above zero
+        from k2d.build import find_or_build
+        exe = find_or_build(os.environ.get("K2D_EXECUTABLE"))
+        work = tempfile.mkdtemp(prefix="adapt_examples_", dir=os.environ.get("K2D_TEST_WORK"))
+        self.addCleanup(shutil.rmtree, work, ignore_errors=True)
+        for name, load in EXAMPLES.items():
+            with self.subTest(deck=name):
+                for ext in (".dat", ".geo"):
+                    shutil.copy(os.path.join(ROOT, "inputs", "adapt", name + ext), work)
+                msh = os.path.join(work, name + ".msh")
+                ad.gmsh_mesh(os.path.join(work, name + ".geo"), msh, msh + ".log")
+                h5 = os.path.join(work, name + ".h5")
+                r, _cpu, rc = ad.solve(exe, os.path.join(work, name + ".dat"), h5, os.path.join(work, name + ".lis"))
+                self.assertEqual(rc, 0)
+                fn = r.last.contact("force_normal")
+                self.assertAlmostEqual(float(np.sum(fn)) / load, 1.0, delta=1e-8)
+                eta, est, source = ad.indicator(r, ad.deck_materials(os.path.join(work, name + ".dat")))
+                self.assertEqual(source, "program")
+                self.assertGreater(est, 0.0)
+                self.assertEqual(len(eta), len(r.mesh.element_nodes))
+
+
+if __name__ == "__main__":
+    unittest.main()
