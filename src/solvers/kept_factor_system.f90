@@ -15,7 +15,8 @@
 !! heap"): a back-substitution costs about a fifth of a factorization there.
 !!
 !! A factorization is made (as by full_system) when
-!! * the model has fewer than KEPT_MIN_PAIRS pairs (its factorizations are cheap),
+!! * the model has fewer than KEPT_MIN_PAIRS pairs or KEPT_MIN_EQUATIONS equations
+!!   (its factorizations are cheap, a back-substitution a large share of one),
 !! * a pair lost a spring since the factorization (its K_n or K_T became zero:
 !!   the new system may be singular, which only a factorization detects and
 !!   names; the driver gives the springs present in `support`),
@@ -28,10 +29,15 @@ module kept_factor_system
    use full_system, only: full_system_t
    implicit none
    private
-   public :: kept_factor_system_t, KEPT_MIN_PAIRS, KEPT_MAX_ITERATIONS, KEPT_TOLERANCE
+   public :: kept_factor_system_t, KEPT_MIN_PAIRS, KEPT_MIN_EQUATIONS, KEPT_MAX_ITERATIONS, &
+             KEPT_TOLERANCE
 
    !> Pairs from which a factorization is kept (as the increment predictor's limit).
    integer, parameter :: KEPT_MIN_PAIRS = 200
+   !> Equations from which a factorization is kept: below, a back-substitution costs too large a
+   !! share of a factorization (measured: 401 pairs on 6 436 DOFs 25 % slower with the kept
+   !! factor, 3 001 pairs on 19 226 DOFs 4 % faster; docs/performance.md).
+   integer, parameter :: KEPT_MIN_EQUATIONS = 15000
    !> Steps of the iteration before the springs are factorized.
    integer, parameter :: KEPT_MAX_ITERATIONS = 6
    !> Preconditioned residual (max norm) over the solution (max norm) at which it stops.
@@ -39,6 +45,7 @@ module kept_factor_system
 
    type, extends(full_system_t) :: kept_factor_system_t
       integer :: min_pairs = KEPT_MIN_PAIRS  !! pairs from which factors are kept
+      integer :: min_equations = KEPT_MIN_EQUATIONS  !! and equations
       logical :: active = .false.         !! enough pairs: factors are kept
       logical :: factored = .false.       !! the factors are of the springs kf
       logical :: pending = .false.        !! the springs kc differ from kf
@@ -67,7 +74,8 @@ contains
       type(status_t), intent(inout) :: status
       call this%full_system_t%prepare(kref, status)
       this%active = .false.
-      if (allocated(this%peq)) this%active = size(this%peq, 2) >= this%min_pairs
+      if (allocated(this%peq)) this%active = size(this%peq, 2) >= this%min_pairs .and. &
+                                             this%neq >= this%min_equations
       this%factored = .false.
       this%pending = .false.
    end subroutine kept_prepare
