@@ -48,6 +48,10 @@ EXEMPT = {
     "condensed_system": "covered by test_contact_system (one of the contact systems it compares)",
     "contact_dense": "covered by test_contact_system (the dense contact block it solves)",
     "contact_system_factory": "covered by test_contact_system, which makes its systems through it",
+    "kept_factor_system": "covered by test_contact_system (test_kept_factor_iterates, "
+                          "test_kept_factor_inactive_below_limit, and the factory's full system)",
+    "heap_policy": "one call of glibc's mallopt: its effect is system CPU time, measured by the "
+                   "scaling benchmark (docs/performance.md), not by a unit test",
     # driver
     "equation_numbering": "covered by test_renumber, which numbers the equations through it",
     "model_input": "covered by test_incremental and the validation suites, which read their "

@@ -684,6 +684,8 @@ contains
       call check_finite_springs(st, status)
       if (.not. status%ok()) return
       call an%springs%set_matrices(m%contact, st)
+      ! the springs present (a system that keeps a factorization refactorizes when one is lost)
+      an%sys%support = merge(1, 0, st%md%kn > 0.0_dp) + merge(2, 0, st%md%kt > 0.0_dp)
       call an%sys%set_springs(an%springs%kstore, status)
       an%system_current = status%ok()
       if (.not. status%ok()) call describe_singular(an, status)

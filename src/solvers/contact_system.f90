@@ -80,6 +80,10 @@ module contact_system
                                                       !! found by the system itself
       logical :: condensed = .false.                  !! the bodies are condensed
                                                       !! onto the contact equations
+      integer, allocatable :: support(:)              !! (npair) optional, set before
+                                                      !! set_springs: the springs of
+                                                      !! each pair (bit 0: K_n > 0,
+                                                      !! bit 1: K_T > 0)
    contains
       procedure :: setup
       procedure(prepare_i), deferred :: prepare

@@ -30,7 +30,7 @@ module contact_system_factory
    use run_plan, only: CONDENSE_ON, CONDENSE_OFF, SYSTEM_FULL, SYSTEM_CONDENSED, SYSTEM_MUMPS_SCHUR
    use linear_solver, only: linear_solver_t
    use contact_system, only: contact_system_t
-   use full_system, only: full_system_t
+   use kept_factor_system, only: kept_factor_system_t
    use condensed_system, only: condensed_system_t
 #ifdef KONTAKT2D_HAVE_MUMPS
    use mumps_solver, only: mumps_solver_t
@@ -121,7 +121,7 @@ contains
       case (SYSTEM_CONDENSED)
          allocate (condensed_system_t :: sys)
       case default
-         allocate (full_system_t :: sys)
+         allocate (kept_factor_system_t :: sys)
       end select
    end subroutine create_contact_system
 

@@ -45,6 +45,7 @@ module mumps_solver
    use mumps_ordering, only: ORDERING_AMD, ORDERING_SCOTCH, ORDERING_PORD, ORDERING_AUTO, &
                              ORDERING_METIS, ORDERING_DEFAULT, METIS_MIN_NEQ, choose_ordering, &
                              ordering_text, metis_perm_in
+   use heap_policy, only: keep_freed_heap
    implicit none
    private
 
@@ -258,6 +259,8 @@ contains
    subroutine mumps_expect_refactorizations(this)
       class(mumps_solver_t), intent(inout) :: this
       this%many = .true.
+      ! every factorization reuses the pages of the last (heap_policy)
+      call keep_freed_heap()
    end subroutine mumps_expect_refactorizations
 
    !> PERM_IN from METIS (`metis_perm_in`), the Schur variables placed last; times the
