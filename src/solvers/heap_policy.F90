@@ -30,7 +30,7 @@ module heap_policy
    end interface
 #endif
 
-   logical, save :: done = .false.
+   logical :: done = .false.
 
 contains
 
