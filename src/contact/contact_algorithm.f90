@@ -17,7 +17,8 @@
 !! force vector, and re-exports the names its callers use.
 module contact_algorithm
    use kinds, only: dp
-   use contact_types, only: contact_def_t, contact_pair_t, interface_t, MAX_PAIR_NODES
+   use contact_types, only: contact_def_t, contact_pair_t, interface_t, MAX_PAIR_NODES, &
+                            FRICTION_NONE
    use contact_element, only: pair_stiffness, pair_kinematics, pair_forces
    use contact_pair_types, only: pair_state_t, pair_mode_t, contact_state_t, MAX_SWITCH, &
                                  NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
@@ -35,7 +36,8 @@ module contact_algorithm
              pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
              start_force_normal, frozen_pairs, tangential_drift, drop_regularisation, &
              regularise_slip, &
-             anchor_regularisation, release_anchors, settle_frozen, open_held_tension
+             anchor_regularisation, release_anchors, settle_frozen, open_held_tension, &
+             hold_at_rest
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: MAX_SWITCH
 
@@ -228,6 +230,45 @@ contains
          end associate
       end do
    end subroutine open_held_tension
+
+   !> RETURN, an increment to zero load: the rough pairs that the last solution
+   !! opened, when it left no pair closed at all and the out-of-balance force
+   !! within its limit (the caller's test), stay at the zero-force point of their
+   !! unloading branch, held there (as evaluate_rough_pair holds a pair found just
+   !! below it: the secant from A to the point, K (u - u_thr), which the next
+   !! solution brings back to the point), in slip with a force-free K_T^e.  At zero
+   !! load every pair's force is zero at equilibrium, so a body held only by the
+   !! contact is at rest wherever no pair is pressed: its position is not unique,
+   !! and with every pair open the system is singular in the body's rigid-body
+   !! modes (generated scenes 49, 66, 169: both attempts stopped singular after a
+   !! solution that had balanced every force).  Of those positions this is the one
+   !! where the body touches its last pairs, at zero force, where the unloading
+   !! has brought it: the rest position the law gives a body set down on its
+   !! residual closures.  `changed` flags the pairs held.
+   pure subroutine hold_at_rest(cdef, st, was_closed, changed)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      logical, intent(in) :: was_closed(:)      !! (npair) closed before the last evaluation
+      logical, intent(inout) :: changed(:)      !! (npair)
+      integer :: k, j
+      do k = 1, size(st%rough)
+         j = st%rough(k)
+         associate (md => st%md(j), pr => cdef%pairs(j))
+            if (md%closed .or. .not. (was_closed(j) .and. md%on_unloading)) cycle
+            if (pr%area <= 0.0_dp .or. .not. (md%ua > md%uthr)) cycle
+            md%closed = .true.
+            md%held = .true.
+            md%kn = pr%area*md%pa/(md%ua - md%uthr)
+            st%fn(j) = min(md%kn*(st%s(j)%un + st%dun(j) - md%uthr), 0.0_dp)
+            st%ft(j) = 0.0_dp
+            md%tstate = TS_SLIP
+            md%tsign = 0
+            md%kt = 0.0_dp
+            if (cdef%ifaces(pr%iface)%friction /= FRICTION_NONE) md%kt = md%kte
+            changed(j) = .true.
+         end associate
+      end do
+   end subroutine hold_at_rest
 
    !> The forces of an anchored pair's regularising springs (anchor_regularisation),
    !! added to the law's fn and ft: the touching spring of a pair above the spring's

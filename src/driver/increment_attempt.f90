@@ -21,7 +21,7 @@ module increment_attempt
          augment_multipliers, &
                                 drop_regularisation, regularise_slip, &
                                 anchor_regularisation, release_anchors, settle_frozen, &
-                                open_held_tension
+                                open_held_tension, hold_at_rest
    use contact_start, only: increment_pressure, separating_load
    use model, only: model_t
    use step_audit, only: check_finite_springs
@@ -334,13 +334,12 @@ contains
       logical, intent(in) :: slip_reg            !! every pair in slip keeps K_T^e (regularise_slip)
       type(attempt_t), intent(inout) :: att
       type(status_t), intent(inout) :: status
-      real(dp), allocatable :: rhs(:), ddu(:, :), rvec(:, :), rpred(:, :)
-      logical, allocatable :: changed(:)
-      integer :: iter, maxit
+      real(dp), allocatable :: rhs(:), ddu(:, :), rvec(:, :), rpred(:, :), dl(:, :)
+      logical, allocatable :: changed(:), wasc(:)
+      integer :: iter, maxit, nrest
       real(dp) :: fscale, dnorm, rshare
-      logical :: need_matrix, done, again, newton, hold, anchored
+      logical :: need_matrix, done, again, newton, hold, anchored, shortened
       type(step_start_t) :: start
-
       allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), &
                 rpred(an%springs%nd, an%npair), &
                 changed(an%npair))
@@ -367,6 +366,7 @@ contains
       hold = .false.
       anchored = .false.
       rshare = 0.0_dp
+      nrest = 0
       call load_increment(an%coup, an%map, an%fcase, an%ucase, an%restrained, dlam, carry, rhs, &
                           att%du)
       fscale = max(maxval([0.0_dp, abs(rhs)]), maxval(abs(fext_new)), 1.0e-300_dp)
@@ -417,6 +417,7 @@ contains
          end if
          ! predicted spring forces (the linearisation the solve used) ...
          call an%springs%predicted_forces(m%contact%pairs, rvec, ddu, rpred)
+         dl = merge(0.0_dp, ddu, an%restrained)
          ! (a hold moves by round-off only: its corrections are measured against the
          ! largest displacement increment of the run so far)
          dnorm = maxval(abs(merge(0.0_dp, ddu, an%restrained)))/ &
@@ -427,13 +428,17 @@ contains
          ddu = 0.0_dp
          ! ... against the actual ones, after the mode checks
          call update_modes(again)
-         if (newton .and. iter > 1 .and. .not. (again .or. slip_reg)) then
-            call line_search(an, m, st, start, first, fscale, rpred, rvec, rhs, changed, att, &
-                             again, dnorm)
-            if (again) need_matrix = .true.
-            if (.not. again) rshare = roundoff_share(att, m%contact%opts%tol_residual)
-         end if
+         call line_search(an, m, st, start, first, newton .and. iter > 1 .and. .not. slip_reg, &
+                          fscale, rpred, rvec, rhs, changed, att, again, need_matrix, dnorm, &
+                          rshare, shortened)
          if (again) cycle
+         if (newton .and. .not. anchored .and. iter >= 2 .and. .not. shortened) then
+            call stretch_correction(an, m, st, first, fscale, dl, start%rhs, start%rvec, rpred, &
+                                    rvec, rhs, changed, att, dnorm, rshare, again, status)
+            if (.not. status%ok()) return
+            need_matrix = need_matrix .or. again
+            if (again) cycle
+         end if
          ! a force at its round-off floor and within 1e-3 TOLR: the next correction would not
          ! count (roundoff_share), so it is not made (where the predictor is used)
          if (newton .and. .not. slip_reg .and. an%pred%enabled .and. rshare >= 1.0_dp .and. &
@@ -454,12 +459,7 @@ contains
             if (newton .and. .not. anchored) then
                call open_held_tension(m%contact, st, att%rtol*fscale, changed)
                if (any(changed)) then
-                  call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
-                  call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, &
-                                      m%contact%opts%tol_residual, att)
-                  att%changing = .true.
-                  att%nchanged = count(changed)
-                  att%first_changed = findloc(changed, .true., dim=1)
+                  call changed_modes(an, m, st, fscale, rpred, rvec, rhs, changed, att)
                   att%repeats = att%repeats + 1
                   rshare = 0.0_dp
                   need_matrix = .true.
@@ -506,21 +506,22 @@ contains
       !! repeated with a new matrix.
       subroutine update_modes(again)
          logical, intent(out) :: again
+         wasc = st%md%closed
          call evaluate_pairs(m%contact, st, att%du, changed, first)
-         call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
-         call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, m%contact%opts%tol_residual, &
-                             att)
-         att%changing = any(changed)
-         att%nchanged = count(changed)
-         att%first_changed = findloc(changed, .true., dim=1)
+         call changed_modes(an, m, st, fscale, rpred, rvec, rhs, changed, att)
+         ! every pair opened at zero load, the forces balanced: at rest on the last (hold_at_rest)
+         if (newton .and. any(changed) .and. .not. any(st%md%closed) .and. nrest < 3 .and. &
+             att%rnorm <= att%rtol .and. maxval(abs(fext_new)) <= 1.0e-12_dp*an%force_scale) then
+            call hold_at_rest(m%contact, st, wasc, changed)
+            call changed_modes(an, m, st, fscale, rpred, rvec, rhs, changed, att)
+            nrest = nrest + 1
+         end if
          again = att%changing
          ! the share of the out-of-balance force that is round-off, for the next correction
          rshare = 0.0_dp
          if (.not. again) rshare = roundoff_share(att, m%contact%opts%tol_residual)
-         if (again) then
-            att%repeats = att%repeats + 1
-            need_matrix = .true.
-         end if
+         if (again) att%repeats = att%repeats + 1
+         need_matrix = need_matrix .or. again
       end subroutine update_modes
    end subroutine attempt_pass
 
@@ -563,22 +564,28 @@ contains
    !! every second solution (a pair at the edge of a bolted joint's contact zone
    !! when the service load is taken off: docs/robustness.md).  The search does
    !! not move a converging iteration: its force does not grow.
-   subroutine line_search(an, m, st, start, first, fscale, rpred, rvec, rhs, changed, att, &
-                          again, dnorm)
+   subroutine line_search(an, m, st, start, first, active, fscale, rpred, rvec, rhs, changed, &
+                          att, again, need_matrix, dnorm, rshare, shortened)
       type(analysis_t), intent(inout) :: an
       type(model_t), intent(in) :: m
       type(contact_state_t), intent(inout) :: st
       type(step_start_t), intent(in) :: start
       logical, intent(in) :: first
+      logical, intent(in) :: active               !! a later Newton solution of a first pass
       real(dp), intent(in) :: fscale
       real(dp), intent(inout) :: rpred(:, :), rvec(:, :), rhs(:)
       logical, intent(inout) :: changed(:)
       type(attempt_t), intent(inout) :: att
-      logical, intent(inout) :: again
-      real(dp), intent(inout) :: dnorm
+      logical, intent(inout) :: again             !! in: the modes changed (no search)
+      logical, intent(inout) :: need_matrix       !! set where a shortened step changes a mode
+      real(dp), intent(inout) :: dnorm, rshare    !! the correction, the round-off share
+      logical, intent(out) :: shortened           !! the solution was shortened (alpha < 1):
+                                                  !! no longer the one stretch_correction takes
       real(dp), allocatable :: step(:, :), fpred(:, :)
       real(dp) :: alpha, best, best_alpha
       integer :: k
+      shortened = .false.
+      if (.not. active .or. again) return
       if (.not. allocated(start%md) .or. .not. an%sys%scales_last()) return
       if (.not. (att%rnorm > LS_GROWTH*start%rnorm)) return
       step = att%du - start%du
@@ -600,10 +607,13 @@ contains
          alpha = best_alpha
          call evaluate_at(alpha)
       end if
-      if (alpha < 1.0_dp) then
+      shortened = alpha < 1.0_dp
+      if (shortened) then
          call an%sys%scale_last(alpha)
          dnorm = alpha*dnorm
       end if
+      if (again) need_matrix = .true.
+      if (.not. again) rshare = roundoff_share(att, m%contact%opts%tol_residual)
    contains
       !> The pairs and the out-of-balance force at alpha times the solution.
       subroutine evaluate_at(a)
@@ -630,6 +640,125 @@ contains
          end if
       end subroutine evaluate_at
    end subroutine line_search
+
+   !> The spring forces, the out-of-balance force and the mode changes (flagged
+   !! in `changed`) of the attempt after an evaluation of the pairs or a change of
+   !! their modes outside one.
+   subroutine changed_modes(an, m, st, fscale, rpred, rvec, rhs, changed, att)
+      type(analysis_t), intent(in) :: an
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(in) :: st
+      real(dp), intent(in) :: fscale, rpred(:, :)
+      real(dp), intent(inout) :: rvec(:, :), rhs(:)
+      logical, intent(in) :: changed(:)
+      type(attempt_t), intent(inout) :: att
+      call an%springs%residual_forces(m%contact, st, rpred, rvec, rhs)
+      call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, m%contact%opts%tol_residual, att)
+      att%changing = any(changed)
+      att%nchanged = count(changed)
+      att%first_changed = findloc(changed, .true., dim=1)
+   end subroutine changed_modes
+
+   !> A Newton correction stretched along its own direction where the
+   !! out-of-balance force hardly fell (to more than half of the force it was
+   !! solved for, the modes kept).  That happens where a mode of the bodies is held
+   !! in the matrix by stiffnesses that carry no force: the regularising springs
+   !! of pairs slipping at vanishing normal force (K_T^e), the secant of a pair
+   !! at rest at zero force.  The solution moves the bodies by the force over
+   !! those stiffnesses, and the law's forces, which alone can balance it, change
+   !! by their own much smaller stiffness times that move: each solution removes
+   !! that small share of the force (a body at zero load with a loaded pair held
+   !! by force-free neighbours, generated scenes 66, 104).  Along the direction d
+   !! of the correction the out-of-balance force at a multiple a of it is
+   !! r(a) = (1 - a) r0 + (predicted spring forces at a) - (the law's forces at
+   !! a), r0 the force the correction was solved for: the bodies are linear, and
+   !! the interior equations hold for every a.  r(1) is the force now; r is close
+   !! to linear in a (r0 + a (r(1) - r0)) as long as the pairs keep their modes
+   !! and branches, whatever the stiffnesses were, so the least-squares a of that
+   !! line is tried, a = r0.(r0 - r1)/|r0 - r1|^2 (from 2 to 1e12), and kept only
+   !! when the out-of-balance force is smaller there (with the modes the law
+   !! gives there, which then count as mode changes: again).  A stretch measures
+   !! the forces of the law, not the stiffnesses, so it leaves an iteration on the
+   !! law; on a convex branch the line lands short of the zero-force point and
+   !! the next solution goes on from there.  Quadratic Newton steps (the force
+   !! falling below half) are never stretched.  A stretch that is kept is solved
+   !! for ((a - 1) r0 with the same matrix: the same move to round-off), so that
+   !! the contact system, which recovers the dofs off the contact equations
+   !! from the sum of its solutions, has it too; the pairs are evaluated there.
+   subroutine stretch_correction(an, m, st, first, fscale, dl, r0, rvb, rpred, rvec, rhs, &
+                                 changed, att, dnorm, rshare, again, status)
+      type(analysis_t), intent(inout) :: an
+      type(model_t), intent(in) :: m
+      type(contact_state_t), intent(inout) :: st
+      logical, intent(in) :: first
+      real(dp), intent(in) :: fscale
+      real(dp), intent(in) :: dl(:, :)             !! the last correction (free dofs)
+      real(dp), intent(in) :: r0(:)                !! the force it was solved for
+      real(dp), intent(in) :: rvb(:, :)            !! the spring forces it started from
+      real(dp), intent(in) :: rpred(:, :)          !! the spring forces it predicted
+      real(dp), intent(inout) :: rvec(:, :), rhs(:)
+      logical, intent(inout) :: changed(:)
+      type(attempt_t), intent(inout) :: att
+      real(dp), intent(inout) :: dnorm, rshare
+      logical, intent(out) :: again
+      type(status_t), intent(inout) :: status
+      type(contact_state_t) :: st1
+      type(attempt_t) :: att1
+      real(dp), allocatable :: rvec1(:, :), rhs1(:), dr(:), d2(:, :)
+      real(dp) :: a, tol
+      again = .false.
+      if (size(rhs) == 0 .or. att%rnorm <= att%rtol) return
+      if (maxval(abs(rhs)) <= 0.5_dp*maxval(abs(r0))) return
+      dr = r0 - rhs
+      if (.not. (dot_product(dr, dr) > 0.0_dp)) return
+      a = dot_product(r0, dr)/dot_product(dr, dr)
+      if (.not. (a >= 2.0_dp)) return
+      a = min(a, 1.0e12_dp)
+      tol = m%contact%opts%tol_residual
+      st1 = st
+      att1 = att
+      rvec1 = rvec
+      rhs1 = rhs
+      call try_at(att%du + (a - 1.0_dp)*dl)
+      if (att%rnorm < att1%rnorm) then
+         ! kept: solved for, and evaluated at that solution
+         d2 = 0.0_dp*dl
+         rhs = (a - 1.0_dp)*r0
+         call an%sys%solve(rhs, d2, status)
+         if (.not. status%ok()) then
+            call describe_singular(an, status)
+            return
+         end if
+         st = st1
+         call try_at(att1%du + merge(0.0_dp, d2, an%restrained))
+      end if
+      if (.not. (att%rnorm < att1%rnorm)) then
+         ! no better there: the correction as it was
+         st = st1
+         att = att1
+         rvec = rvec1
+         rhs = rhs1
+         changed = .false.
+         return
+      end if
+      dnorm = a*dnorm
+      again = any(changed)
+      att%changing = again
+      att%nchanged = count(changed)
+      att%first_changed = findloc(changed, .true., dim=1)
+      if (again) att%repeats = att%repeats + 1
+      rshare = merge(0.0_dp, roundoff_share(att, tol), again)
+   contains
+      !> The pairs and the out-of-balance force at the displacement increment du.
+      subroutine try_at(du)
+         real(dp), intent(in) :: du(:, :)
+         att%du = du
+         call evaluate_pairs(m%contact, st, att%du, changed, first)
+         call an%springs%residual_forces(m%contact, st, rvb + a*(rpred - rvb), rvec, rhs)
+         rhs = rhs + (1.0_dp - a)*r0
+         call out_of_balance(an, m%contact%pairs, rhs, rvec, fscale, tol, att)
+      end subroutine try_at
+   end subroutine stretch_correction
 
    !> The force scale of an attempt's out-of-balance force, settled at its first
    !! solve (rhs: the first right-hand side, carry: the out-of-balance force carried

@@ -83,15 +83,16 @@ def tangential_reversal(name, scheme):
                     "normal force held at 1 N/mm2 (k_e = 100 N/mm3, mu = 0.3, hardening branch on)."])
 
 
-def friction_only(name, mu, fix_symmetry):
+def friction_only(name, mu, fix_symmetry, shear=0.0, comments=None):
     """A block with Poisson expansion held sideways by friction alone."""
     d = block_on_base("Stability: block held sideways by friction, mu = %g" % mu, 1, 4, nu=0.3,
                       fix_x_line=fix_symmetry)
-    d.edge_pressure("A", lambda x, y: abs(y - 10.0) < 1e-12, 1.0)
+    d.edge_pressure("A", lambda x, y: abs(y - 10.0) < 1e-12, 1.0, shear)
     d.contact = ["UNITS     KGF_UM", "NORMAL           1.0       0.5", "TANGENT          1.3       0.5",
                  "FRICTION  COULOMB   %7.4f" % mu, "HARDENING OFF"] + surfaces(d)
     d.increments = [(1, [0.05]), (9, [1.0])]
-    write(d, name, ["mu -> 0: every pair slips, nothing holds the block sideways unless a restraint does."])
+    write(d, name, comments or ["mu -> 0: every pair slips, nothing holds the block sideways unless a restraint "
+                                "does."])
 
 
 if __name__ == "__main__":
@@ -120,3 +121,5 @@ if __name__ == "__main__":
     tangential_reversal("s7_tangential_reversal_newton", "NEWTON")
     friction_only("s9_mu_zero", 0.0, False)
     friction_only("s9_mu_zero_symmetric", 0.0, True)
+    friction_only("s9_mu_zero_shear", 0.0, False, shear=0.01,
+                  comments=["mu -> 0 and a shear on top: no equilibrium, nothing holds the block sideways."])
