@@ -547,7 +547,8 @@ contains
    !! a solution after which the force grew by more than LS_GROWTH, no pair
    !! changing its mode, is shortened to alpha = 1/2, 1/4, ... (at most
    !! LS_HALVINGS times) of itself until the force is below the one it started
-   !! from, or the shortest step; the step of the smallest force is kept.  The
+   !! from, or the shortest step; the step of the smallest force is kept, where it is
+   !! below the force it started from (else the search failed: the whole solution).  The
    !! bodies are linear, so at alpha the force left is
    !!     r(alpha) = (1 - alpha) r_0 + (f_0 + alpha (f_pred - f_0) - f(alpha)),
    !! r_0 the force the solution was for, f_0 the pairs' forces it started from,
@@ -603,6 +604,9 @@ contains
          end if
          if (att%rnorm <= start%rnorm) exit
       end do
+      ! no shorter step falls below the force it started from: the search failed, and the
+      ! solution stays whole (a creep by the shortest steps would stall the iteration)
+      if (.not. (best <= start%rnorm)) best_alpha = 1.0_dp
       if (.not. again .and. alpha /= best_alpha) then
          alpha = best_alpha
          call evaluate_at(alpha)
