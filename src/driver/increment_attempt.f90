@@ -564,7 +564,7 @@ contains
    !! other and back, and the iterates cycle with the force 1e3 times its size
    !! every second solution (a pair at the edge of a bolted joint's contact zone
    !! when the service load is taken off: docs/robustness.md).  The search does
-   !! not move a converging iteration: its force does not grow.
+   !! not move a converging iteration: its force does not double.
    subroutine line_search(an, m, st, start, first, active, fscale, rpred, rvec, rhs, changed, &
                           att, again, need_matrix, dnorm, rshare, shortened)
       type(analysis_t), intent(inout) :: an
