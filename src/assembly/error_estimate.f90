@@ -473,6 +473,9 @@ contains
          if (.not. any(m%nnode_e(1:m%nelem) == nn)) cycle
          call rule_shapes(nn, m%ntype, ngaus, ngp, shp(1:nn, :), der(:, 1:nn, :), w)
          rules(nn)%ngp = ngp
+         ! (allocated here, not on assignment: the compiler's reallocation reads the bounds of
+         ! the unallocated components, garbage that a checked build traps as an overflow)
+         allocate (rules(nn)%shp(nn, ngp), rules(nn)%der(2, nn, ngp), rules(nn)%w(ngp))
          rules(nn)%shp = shp(1:nn, 1:ngp)
          rules(nn)%der = der(:, 1:nn, 1:ngp)
          rules(nn)%w = w(1:ngp)
