@@ -16,7 +16,6 @@ module increment_attempt
    use assembly, only: coupling_t, load_increment
    use contact_assembly, only: contact_springs_t
    use contact_types, only: contact_options_t, contact_pair_t
-   use contact_pair_types, only: pair_mode_t
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, &
          augment_multipliers, &
                                 drop_regularisation, regularise_slip, &
@@ -106,10 +105,8 @@ module increment_attempt
       real(dp), allocatable :: du(:, :)            !! the attempt's increment before the solve
       real(dp), allocatable :: rhs(:)              !! the out-of-balance force it solved for
       real(dp), allocatable :: rvec(:, :)          !! the pairs' forces it started from
-      type(pair_mode_t), allocatable :: md(:)      !! the pairs' modes and forces there
-      real(dp), allocatable :: fn(:), ft(:), dun(:), dut(:)
+      type(contact_state_t) :: st                  !! the pairs' modes and forces there
       real(dp) :: rnorm = 0.0_dp                   !! its relative out-of-balance force
-      logical :: chatter = .false.
    end type step_start_t
 
    !> A Newton solution whose out-of-balance force grows by more than this
@@ -534,13 +531,8 @@ contains
       start%du = att%du
       start%rhs = rhs
       start%rvec = rvec
-      start%md = st%md
-      start%fn = st%fn
-      start%ft = st%ft
-      start%dun = st%dun
-      start%dut = st%dut
+      start%st = st
       start%rnorm = att%rnorm
-      start%chatter = st%chatter
    end subroutine keep_start
 
    !> Backtracking line search on the out-of-balance force (Newton, rough pairs):
@@ -587,7 +579,7 @@ contains
       integer :: k
       shortened = .false.
       if (.not. active .or. again) return
-      if (.not. allocated(start%md) .or. .not. an%sys%scales_last()) return
+      if (.not. allocated(start%du) .or. .not. an%sys%scales_last()) return
       if (.not. (att%rnorm > LS_GROWTH*start%rnorm)) return
       step = att%du - start%du
       fpred = rpred
@@ -622,12 +614,7 @@ contains
       !> The pairs and the out-of-balance force at alpha times the solution.
       subroutine evaluate_at(a)
          real(dp), intent(in) :: a
-         st%md = start%md
-         st%fn = start%fn
-         st%ft = start%ft
-         st%dun = start%dun
-         st%dut = start%dut
-         st%chatter = start%chatter
+         st = start%st
          att%du = start%du + a*step
          rpred = start%rvec + a*(fpred - start%rvec)
          call evaluate_pairs(m%contact, st, att%du, changed, first)
