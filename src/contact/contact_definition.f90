@@ -378,9 +378,18 @@ contains
       integer, allocatable :: body(:), nolinks(:, :)
       logical :: used_b(m%npoin), master(m%npoin)
       integer :: k, q, nbody
+      integer, allocatable :: npen(:), kpen(:)        !! per interface: pairs penetrated, the first
+      real(dp), allocatable :: gpen(:, :)            !! per interface: their least and largest g0
 
       allocate (body(m%npoin), nolinks(2, 0))
       call find_bodies(m, nolinks, body, nbody)
+      q = 0
+      if (size(pairs) > 0) q = maxval(pairs%iface)
+      allocate (npen(q), kpen(q), gpen(2, q))
+      npen = 0
+      kpen = 0
+      gpen(1, :) = huge(1.0_dp)
+      gpen(2, :) = -huge(1.0_dp)
       used_b = .false.
       master = .false.
       do k = 1, size(pairs)
@@ -421,10 +430,28 @@ contains
                                merge('B', 'A', p%kind == PAIR_NODE)//')', file=file, line=p%line)
             end if
             if (p%g0 < -1.0e-9_dp*size_model) then
+               ! one warning per interface (an interference fit penetrates at every pair)
+               if (npen(p%iface) == 0) kpen(p%iface) = k
+               npen(p%iface) = npen(p%iface) + 1
+               gpen(1, p%iface) = min(gpen(1, p%iface), p%g0)
+               gpen(2, p%iface) = max(gpen(2, p%iface), p%g0)
+            end if
+         end associate
+      end do
+      do q = 1, size(npen)
+         if (npen(q) == 0) cycle
+         associate (p => pairs(kpen(q)))
+            if (npen(q) == 1) then
                call warnings%add('W-PENETRATION', 'CONTACT: pair '//itoa(p%node_a)//'-'// &
-                                 itoa(p%node_b)// &
-                                 ' starts with a negative gap (penetration) '//rtoa(p%g0), &
-                                 file=file, line=p%line)
+                                 itoa(p%node_b)//' starts with a negative gap (penetration) '// &
+                                 rtoa(p%g0), file=file, line=p%line)
+            else
+               call warnings%add('W-PENETRATION', 'CONTACT: '//itoa(npen(q))//' pairs of '// &
+                                 'interface '//itoa(q)//' start with a negative gap '// &
+                                 '(penetration) from '//rtoa(gpen(1, q))//' to '// &
+                                 rtoa(gpen(2, q))//', the first pair '//itoa(p%node_a)//'-'// &
+                                 itoa(p%node_b)//' (an interference, pressed out in the '// &
+                                 'first increment)', file=file, line=p%line)
             end if
          end associate
       end do

@@ -140,7 +140,7 @@ contains
       class(error_list_t), intent(in) :: this
       integer, intent(in), optional :: unit        !! default: stderr
       integer, intent(in), optional :: max_errors  !! print at most this many (default 50)
-      integer :: u, i, nmax
+      integer :: u, i, nmax, nw
       character(len=16) :: sl, sc
       character(len=:), allocatable :: where
 
@@ -172,7 +172,21 @@ contains
             end if
          end associate
       end do
-      if (this%n > nmax) write (u, '(a,i0,a)') '... and ', this%n - nmax, ' more errors'
+      if (this%n > nmax) then
+         ! what is left unprinted, named as it is: warnings, errors, or both
+         nw = 0
+         do i = nmax + 1, this%n
+            if (index(this%items(i)%code, 'W-') == 1) nw = nw + 1
+         end do
+         if (nw == this%n - nmax) then
+            write (u, '(a,i0,a)') '... and ', nw, ' more warnings'
+         else if (nw == 0) then
+            write (u, '(a,i0,a)') '... and ', this%n - nmax, ' more errors'
+         else
+            write (u, '(a,i0,a,i0,a)') '... and ', this%n - nmax - nw, ' more errors and ', nw, &
+               ' more warnings'
+         end if
+      end if
    end subroutine error_list_print
 
    !> Forget all errors.
