@@ -382,10 +382,10 @@ contains
          end if
 
          ! 2. loading / unloading (SPEC §2.1): reversal starts the unloading branch at
-         ! A = (u, p(u)) of the committed state, the pressure taken from the law
+         ! A = (u, p(u)) of the committed state, the pressure taken from the law -- of a pair
+         ! that carries a force (one that starts penetrated, un = -g0 at zero force, loads)
          if (md%closed .and. s%closed .and. .not. md%newly_closed .and. .not. md%on_unloading &
-               .and. &
-             dun < 0.0_dp .and. may_switch) then
+               .and. s%fn > 0.0_dp .and. dun < 0.0_dp .and. may_switch) then
             md%on_unloading = .true.
             md%ua = s%un
             md%pa = virgin_pressure(s%un, ifc%cn, ifc%m)

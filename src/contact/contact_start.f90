@@ -7,6 +7,7 @@ module contact_start
    use model, only: model_t, NTYPE_AXISYMMETRIC
    use contact_types, only: LAW_ROUGH, LAW_IDEAL, UPDATE_RETURN, PAIR_RIGID
    use contact_algorithm, only: contact_state_t, contact_init
+   use contact_laws, only: normal_pressure
    use restraint_check, only: find_bodies
    implicit none
    private
@@ -82,7 +83,7 @@ contains
       type(status_t), intent(inout) :: status
       integer, allocatable :: body(:), nolinks(:, :)
       logical, allocatable :: in_a(:), in_b(:)
-      real(dp) :: nbar(2), aa, fn
+      real(dp) :: nbar(2), aa, fn, pfit
       integer :: nbody, j
       logical :: any_closed
 
@@ -110,10 +111,11 @@ contains
          return
       end if
       nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
-      fn = abs(dot_product(resultant(in_a), nbar))
-      if (.not. (fn > 0.0_dp)) fn = abs(dot_product(resultant(in_b .and. .not. in_a), nbar))
+      fn = normal_part(resultant(in_a))
+      if (.not. (fn > 0.0_dp)) fn = normal_part(resultant(in_b .and. .not. in_a))
       if (.not. (fn > 0.0_dp)) fn = preload()
-      if (.not. (fn > 0.0_dp) .or. .not. (aa > 0.0_dp)) then
+      pfit = fit_pressure()
+      if (.not. (fn > 0.0_dp .or. pfit > 0.0_dp) .or. .not. (aa > 0.0_dp)) then
          call status%set(STAT_INPUT, &
                          'contact: the first increment applies no force normal to the contact '// &
                          'surface on either body and no bolt preload (it is displacement-'// &
@@ -121,8 +123,38 @@ contains
                          'cannot be computed; give it on a CONTACT START card (PM)')
          return
       end if
-      st%p_start = fn/aa
+      st%p_start = fn/aa + pfit
    contains
+      !> |f . nbar|, or 0 where that is round-off of f, a force along the surface (a push along
+      !! a shrink fit's axis: its radial part over the bore's area was a start pressure of
+      !! 1e-16 and a tangential stiffness that let the hub run away).
+      real(dp) function normal_part(f)
+         real(dp), intent(in) :: f(2)
+         normal_part = abs(dot_product(f, nbar))
+         if (normal_part <= 1.0e-9_dp*norm2(f)) normal_part = 0.0_dp
+      end function normal_part
+
+      !> The pressure an interference fit brings: the closed rough pairs that start
+      !! penetrated (g0 < 0) pressed by the whole overlap on their virgin law, p(-g0), averaged
+      !! over the closed pairs' area -- the bodies' own compliance takes part of the overlap, so
+      !! this is the upper end of the pressure the first increment reaches (0: no overlap).
+      real(dp) function fit_pressure()
+         integer :: k
+         fit_pressure = 0.0_dp
+         do k = 1, size(m%contact%pairs)
+            associate (pr => m%contact%pairs(k))
+               if (m%contact%ifaces(pr%iface)%law /= LAW_ROUGH) cycle
+               if (.not. st%s(k)%closed .or. .not. (pr%g0 < 0.0_dp)) cycle
+               associate (ifc => m%contact%ifaces(pr%iface))
+                  fit_pressure = fit_pressure + pr%area*normal_pressure(-pr%g0, ifc%cn, ifc%m, &
+                                                                          ifc%cn2, ifc%m2, &
+                                                                          .false., 0.0_dp, 0.0_dp)
+               end associate
+            end associate
+         end do
+         fit_pressure = fit_pressure/aa
+      end function fit_pressure
+
       !> The clamping force of the bolts preloaded in the first increment (a joint whose
       !! first stage is the preload alone): the sections' forces F dlambda, each along its
       !! axis, projected on the mean normal.  The section's force acts on its reference

@@ -50,8 +50,8 @@ module incremental
                           stiffness_range, zero_fields, estimate_error
    use contact_algorithm, only: contact_state_t, commit_increment, law_drift, MAX_SWITCH, &
          tangential_drift
-   use step_audit, only: check_finite_attempt, check_finite_step, audit_step, note_doubts, &
-         doubt_summary, &
+   use step_audit, only: check_finite_attempt, check_runaway, check_finite_step, audit_step, &
+         note_doubts, doubt_summary, &
                          sliding_warning, run_history_t, IMBALANCE_NOT_COMPUTED, &
                          imbalance_limit
    use contact_start, only: init_contact_states, start_pressure
@@ -291,9 +291,12 @@ contains
       integer :: inc, nstep, cuts, ic
       logical :: first, rough_newton, last, written, full
       real(dp) :: frac, step, s
+      real(dp) :: msize                             !! the model's largest extent (check_runaway)
 
       allocate (fext(2, m%npoin), fext_new(2, m%npoin), carry(an%map%neq), dlam(m%ncase), &
                 ve_old(an%npair))
+      msize = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), &
+                  maxval(m%coord(2, :)) - minval(m%coord(2, :)))
       fext = 0.0_dp
       carry = 0.0_dp
       nstep = 0
@@ -319,6 +322,9 @@ contains
             call attempt_with_pretension(an, m, res%contact, dlam, carry, fext_new, first, att, &
                                          status)
             call check_finite_attempt(att%du, res%contact, an%has_contact, status)
+            if (an%has_contact .and. att%converged) then
+               call check_runaway(res%contact, msize, nstep + 1, status)
+            end if
             if (.not. m%autoinc) then
                if (.not. status%ok()) exit deck
                if (an%has_contact) call attempt_failure(att, res%contact, m%contact%opts, &

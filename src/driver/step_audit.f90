@@ -22,10 +22,10 @@
 module step_audit
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use kinds, only: dp, stderr
-   use errors, only: status_t, STAT_NONFINITE
+   use errors, only: status_t, STAT_NONFINITE, STAT_NO_CONVERGENCE
    use strings, only: itoa, rtoa
    use records, only: step_record_t, body_fields_t, run_doubts_t, DRIFT_LIMIT, MAX_DOUBT_LINES, &
-         STEP_CONVERGED
+         STEP_CONVERGED, TS_SLIP
    use contact_types, only: contact_def_t, LAW_ROUGH
    use contact_laws, only: normal_pressure
    use contact_algorithm, only: contact_state_t, check_invariants, frozen_pairs, MAX_SWITCH
@@ -34,7 +34,7 @@ module step_audit
    implicit none
    private
    public :: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
-         pair_list
+         pair_list, check_runaway
    public :: sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, &
          imbalance_limit
 
@@ -87,6 +87,52 @@ contains
          call check_pairs(st%ft, 'tangential spring force', status)
       end if
    end subroutine check_finite_attempt
+
+   !> Stop (STAT_NO_CONVERGENCE) an attempt whose solution slid a closed pair by more than the
+   !! model's largest extent.  The pairs assume small sliding (their partners stay opposite each
+   !! other; a slide of 10 % of the pair spacing is warned about, sliding_warning), so such a
+   !! solution is none of the method's: it is what a body held in some direction by friction
+   !! alone does when its load exceeds what the friction can carry.  Every pair slips, the
+   !! force-free regularising springs of the slipping pairs (or their round-off) are all that
+   !! holds it, and the solution moves it by the out-of-balance force over those springs (a
+   !! hub pushed off its shaft: 1.6e7 mm after one increment, "converged" because the
+   !! round-off of a body moved that far swamps every criterion).  No static equilibrium
+   !! exists; the run says so instead of accepting the motion, when some closed pair slips.
+   !! (Checked on converged attempts:
+   !! one that failed says why it failed, and its last iterate may be anywhere.)
+   subroutine check_runaway(st, msize, step, status)
+      type(contact_state_t), intent(in) :: st        !! the attempt's modes and increments
+      real(dp), intent(in) :: msize                  !! the model's largest extent [length]
+      integer, intent(in) :: step                    !! the step attempted
+      type(status_t), intent(inout) :: status
+      integer :: j, jmax, nclosed, nslip
+      real(dp) :: ut, utmax
+      if (.not. status%ok() .or. .not. allocated(st%md) .or. .not. allocated(st%dut)) return
+      if (size(st%dut) /= size(st%md)) return
+      jmax = 0
+      utmax = 0.0_dp
+      nclosed = 0
+      nslip = 0
+      do j = 1, size(st%md)
+         if (.not. st%md(j)%closed) cycle
+         nclosed = nclosed + 1
+         if (st%md(j)%tstate == TS_SLIP) nslip = nslip + 1
+         ut = abs(st%s(j)%ut + st%dut(j))
+         if (ut > utmax) then
+            utmax = ut
+            jmax = j
+         end if
+      end do
+      ! (without a slipping pair the body is held by sticking springs, however soft: a slide
+      ! that large is then the law's overflow or its softness, which other checks name)
+      if (jmax == 0 .or. nslip == 0 .or. .not. (utmax > msize)) return
+      call status%set(STAT_NO_CONVERGENCE, 'in increment '//itoa(step)//' pair '//itoa(jmax)// &
+                      ' slid '//rtoa(utmax)//', more than the model''s size ('//rtoa(msize)// &
+                      '), with '//itoa(nslip)//' of '//itoa(nclosed)//' closed pairs slipping: '// &
+                      'a body moves without bound -- its load exceeds what the friction of its '// &
+                      'contact can carry, or a restraint is missing; a static analysis has no '// &
+                      'equilibrium to find (the pairs assume small sliding: docs/contact.md)')
+   end subroutine check_runaway
 
    !> Stop (STAT_NONFINITE) if a spring stiffness of the current modes is not
    !! finite (the law's tangent at an overflowing pressure), before a
