@@ -114,7 +114,7 @@ def draw(seed):
         EB = _log_uniform(rng, 1e3, 1e9)
         nuB = _q(rng.uniform(0.0, 0.45))
     # the rough law: the machine-tool literature's range (kgf/cm2, um), admissible at any pressure
-    m = _q(rng.uniform(0.3, 0.8))
+    m = _q(rng.uniform(0.15, 0.8))
     cn = _log_uniform(rng, 0.2, 3.0)
     cn2 = _q(cn * rng.uniform(0.3, 1.0))
     m2 = m
