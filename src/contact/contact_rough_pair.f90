@@ -418,7 +418,7 @@ contains
 
          ! Newton stiffness for the next solve of a RETURN update
          if (returning .and. md%closed .and. .not. held_now) then
-            md%kn = newton_normal_stiffness(ifc, md, pr%area, s%fn, fnprev, fpred, fn, u, dun)
+            md%kn = newton_normal_stiffness(ifc, md, pr%area, s%fn, fnprev, fpred, fn, u, dun, regularise)
          end if
 
          ! 3. tangential (SPEC §4.3 item 3 and 4)
@@ -454,9 +454,28 @@ contains
    !!   an intermediate target force (the branch is convex), after which the
    !!   prediction exceeds the force and the tangent takes over: no cycling;
    !! * at zero force (tangent zero): the secant over the increment, which
-   !!   does not vanish, so that a body held only by such pairs stays regular.
-   pure real(dp) function newton_normal_stiffness(ifc, md, area, fn0, fnprev, fpred, fn, u, dun) &
-         result(k)
+   !!   does not vanish, so that a body held only by such pairs stays regular;
+   !! * except on a steep unloading branch (m2 < 0.5): "below 1e-12 of the force
+   !!   scale" is not "at the zero-force point" there.  The branch gives
+   !!   F = A p_A ((u - u_thr)/(u_A - u_thr))^(1/m2), so 1e-12 of A p_A is reached
+   !!   (1e-12)^m2 of the travel above the point: 1e-6 for m2 = 0.5, but 1.6e-2
+   !!   for m2 = 0.15 (the m of measured surfaces).  A pair that far above its
+   !!   point, held by the secant of the increment or of its last solution, makes
+   !!   the matrix carry forces its law does not give (a re-closed pair at 1e-16 N
+   !!   with 1.3e8 N/mm whose equilibrium force was 16 N; the last loaded pairs of
+   !!   a block unloaded to zero could not unload through a neighbour at 1e-15 N
+   !!   held by the increment's secant): Newton stalls.  Such a pair (further than
+   !!   1e-6 of the travel above its point, the bound where the two definitions
+   !!   agree) takes the chord to the point when the last solution sent it towards
+   !!   zero force (the exact step for a pair unloading to zero); otherwise it keeps
+   !!   the secant while the regularising stiffnesses are kept (`regularise`: a
+   !!   body resting on such pairs at zero load is placed by it, as before), and its
+   !!   tangent once half the solutions are spent (drop_regularisation).  A
+   !!   stiffness below 1e-12 of the branch's mean stiffness A p_A/(u_A - u_thr)
+   !!   is raised to 1e-9 of it (the system's pivot test is 1e-12 of the
+   !!   diagonal: a body resting on such a pair alone stays regular).
+   pure real(dp) function newton_normal_stiffness(ifc, md, area, fn0, fnprev, fpred, fn, u, dun, &
+                                                  regularise) result(k)
       type(interface_t), intent(in) :: ifc
       type(pair_mode_t), intent(in) :: md
       real(dp), intent(in) :: area     !! lumped area
@@ -465,7 +484,8 @@ contains
       real(dp), intent(in) :: fpred    !! force the previous solution predicted
       real(dp), intent(in) :: fn, u    !! force and closure now
       real(dp), intent(in) :: dun      !! closure increment so far
-      real(dp) :: fref, ktan
+      logical, intent(in) :: regularise  !! contact_state_t%regularise: before half the solutions
+      real(dp) :: fref, ktan, kmean
       ! the force scale of the pair: its forces in this increment and, on the unloading
       ! branch, the force at A (a pair resting at zero force has no other)
       fref = max(fn0, abs(fnprev), fn, tiny(1.0_dp))
@@ -478,6 +498,18 @@ contains
          k = fn/(u - md%uthr)
       else if (ktan > 0.0_dp .and. fn > 1.0e-12_dp*fref) then
          k = max(ktan, 1.0e-3_dp*fn/max(u - md%uthr, tiny(1.0_dp)))
+      else if ((fpred <= 0.5_dp*fn .or. .not. regularise) .and. md%on_unloading .and. ifc%m2 < 0.5_dp &
+               .and. fn > 0.0_dp .and. &
+               u - md%uthr > 1.0e-6_dp*(md%ua - md%uthr)) then
+         ! a steep branch (m2 < 0.5): below 1e-12 of its force scale but further than 1e-6 of
+         ! its travel above the zero-force point, so not at rest there: the chord to the
+         ! point where the last solution sent it towards zero force; its tangent once half
+         ! the solutions are spent (no more regularising stiffnesses); a stiffness below
+         ! 1e-12 of the branch's mean A p_A/(u_A - u_thr) is raised to 1e-9 of it
+         kmean = area*md%pa/max(md%ua - md%uthr, tiny(1.0_dp))
+         k = fn/(u - md%uthr)
+         if (.not. (fpred <= 0.5_dp*fn)) k = ktan
+         if (k < 1.0e-12_dp*kmean) k = max(k, 1.0e-9_dp*kmean)
       else if (abs(dun) > 0.0_dp .and. abs(fn0 - fn) > 1.0e-12_dp*fref) then
          ! (below the zero-force point: the secant to that point)
          k = abs(fn0 - fn)/max(abs(u - dun - max(u, md%uthr)), tiny(1.0_dp))

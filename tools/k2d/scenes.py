@@ -7,7 +7,8 @@ interface, built from a seeded random draw over what the deck format offers:
   bodies or two different ones; plane stress, plane strain or axisymmetric (the bodies on the
   axis or an annulus off it); T3, Q4, Q8 or Q9 elements; meshes that match node for node
   (MATCHING NODE) or not (MATCHING SEGMENT, A the finer);
-* the interface: the rough law (c_n, m from the literature's range in kgf/cm2 and um; c_n2 <= c_n
+* the interface: the rough law (c_n from the literature's range in kgf/cm2 and um, m from 0.15,
+  the exponent of measured steel surfaces (tools/calibrate.py topography), to the literature's 0.8; c_n2 <= c_n
   with m2 = m, admissible at every pressure, or m2 > m with c_n2 such that the unloading branch is
   admissible to twice the largest pressure of the history), Coulomb, Fredriksson or no friction, the hardening
   branch on or off, or ideal contact (frictionless or Coulomb);
@@ -113,8 +114,10 @@ def draw(seed):
     else:
         EB = _log_uniform(rng, 1e3, 1e9)
         nuB = _q(rng.uniform(0.0, 0.45))
-    # the rough law: the machine-tool literature's range (kgf/cm2, um), admissible at any pressure
-    m = _q(rng.uniform(0.3, 0.8))
+    # the rough law: c_n from the machine-tool literature's range (kgf/cm2, um), m from the
+    # exponents of measured surfaces (0.15-0.22, docs/calibration.md) to the literature's 0.8;
+    # admissible at any pressure
+    m = _q(rng.uniform(0.15, 0.8))
     cn = _log_uniform(rng, 0.2, 3.0)
     cn2 = _q(cn * rng.uniform(0.3, 1.0))
     m2 = m
