@@ -33,8 +33,9 @@
 !! costs more than the rest of a solve.  A new set of symmetric springs
 !! therefore keeps the factor of an earlier one, F^-1 + D_0, and each solve
 !! of (F^-1 + D) z = F^-1 t runs the conjugate gradient method preconditioned
-!! by it (one product with F^-1, the blocks of D and two triangular solves an
-!! iteration, r^2 flops each), until the residual is 1e-15 of the right-hand
+!! by it (two triangular solves an iteration, r^2 flops, and the blocks of
+!! D - D_0: the product (F^-1 + D_0) p is carried along, as the preconditioned
+!! solve itself gives it), until the residual is 1e-15 of the right-hand
 !! side's: the preconditioned matrix differs from I by (F^-1 + D_0)^-1 (D -
 !! D_0), so a small or low-rank change of springs converges in a few
 !! iterations.  A solve that has not converged in PCG_MAX iterations, or
@@ -61,7 +62,7 @@
 !!      (1999), dsyev, dpotrf/dpotri, dtrsv, dgemm, dgemv, dsymv.
 module contact_projection
    use kinds, only: dp, i8
-   use lapack_interfaces, only: dsyev, dpotrf, dpotri, dpotrs, dtrsv, dgemm, dgemv, dsymv
+   use lapack_interfaces, only: dsyev, dpotrf, dpotri, dpotrs, dtrsv, dgemm, dgemv
    implicit none
    private
    public :: contact_projection_t
@@ -116,11 +117,13 @@ module contact_projection
       real(dp), allocatable :: t(:), z(:)      !! (r) work
       real(dp), allocatable :: zr(:)           !! (r) right-hand side of a coordinates solve, kept
       real(dp), allocatable :: d(:, :)         !! (nd, nd) work: D_j
-      real(dp), allocatable :: dcur(:, :, :)   !! (nd, nd, npair) D_j of the current springs
-      real(dp), allocatable :: dfac(:, :, :)   !! (nd, nd, npair) D_j of the factor in c
+      real(dp), allocatable :: dcur(:, :, :)   !! (mr, mr, npair) D_j of the current springs,
+                                               !! mr the largest rank (2: normal and tangent)
+      real(dp), allocatable :: dfac(:, :, :)   !! (mr, mr, npair) D_j of the factor in c
       logical :: factored = .false.            !! c holds the factor of F^-1 + dfac
       logical :: stale = .false.               !! dcur differs from dfac: solves iterate
       real(dp), allocatable :: px(:), pr(:), pp(:), pq(:), pw(:)  !! (r) work of the iterations
+      real(dp), allocatable :: pa(:)           !! (r) (F^-1 + dfac) pp, carried along
       integer :: last_iterations = 0           !! iterations of the last solve (0: direct)
       real(dp) :: stiffness = 0.0_dp           !! largest |D_j| / scale of K_ref,j
                                                !! of the current springs
@@ -162,7 +165,7 @@ contains
       if (allocated(this%finv)) deallocate (this%finv)
       if (allocated(this%c)) deallocate (this%c, this%cdiag, this%t, this%z, this%zr, this%dcur, &
                                          this%dfac, this%px, &
-                                         this%pr, this%pp, this%pq, this%pw)
+                                         this%pr, this%pp, this%pq, this%pw, this%pa)
       this%factored = .false.
       this%stale = .false.
       this%last_iterations = 0
@@ -218,9 +221,11 @@ contains
                  this%v, this%n)
       allocate (this%c(this%r, this%r), this%cdiag(this%r), this%t(this%r), this%z(this%r), &
                 this%zr(this%r), &
-                this%dcur(nd, nd, np), this%dfac(nd, nd, np), this%px(this%r), this%pr(this%r), &
+                this%dcur(max(1, maxval(this%qrank)), max(1, maxval(this%qrank)), np), &
+                this%dfac(max(1, maxval(this%qrank)), max(1, maxval(this%qrank)), np), &
+                this%px(this%r), this%pr(this%r), &
                 this%pp(this%r), &
-                this%pq(this%r), this%pw(this%r))
+                this%pq(this%r), this%pw(this%r), this%pa(this%r))
       this%dcur = 0.0_dp
       this%dfac = 0.0_dp
       ! U's blocks are disjoint when no contact equation belongs to two pair
@@ -288,7 +293,8 @@ contains
       integer, intent(in) :: ppos(:, :)
       real(dp), intent(in) :: kc(:, :, :)
       logical, intent(out) :: done
-      integer :: j, k, l, a, b, nd, rk
+      integer :: j, k, l, a, b, nd, rk, m, ia, ib
+      integer :: iv(size(ppos, 1))
       real(dp) :: recon
       logical :: symmetric
       done = .false.
@@ -298,14 +304,22 @@ contains
       this%stiffness = 0.0_dp
       do j = 1, size(ppos, 2)
          rk = this%qrank(j)
+         ! the pair's valid dofs, in order (a node-to-node pair uses 4 of nd)
+         m = 0
+         do a = 1, nd
+            if (ppos(a, j) > 0) then
+               m = m + 1
+               iv(m) = a
+            end if
+         end do
          ! D_j = Q_j^T kc_j Q_j on the valid dofs
          do l = 1, rk
             do k = 1, rk
                this%d(k, l) = 0.0_dp
-               do b = 1, nd
-                  if (ppos(b, j) <= 0) cycle
-                  do a = 1, nd
-                     if (ppos(a, j) <= 0) cycle
+               do ib = 1, m
+                  b = iv(ib)
+                  do ia = 1, m
+                     a = iv(ia)
                      this%d(k, l) = this%d(k, l) + this%q(a, k, j)*kc(a, b, j)*this%q(b, l, j)
                   end do
                end do
@@ -316,10 +330,10 @@ contains
             this%stiffness = max(this%stiffness, maxval(abs(this%d(1:rk, 1:rk)))/this%kscale(j))
          end if
          ! kc_j = Q_j D_j Q_j^T, or the coordinates do not hold it
-         do b = 1, nd
-            if (ppos(b, j) <= 0) cycle
-            do a = 1, nd
-               if (ppos(a, j) <= 0) cycle
+         do ib = 1, m
+            b = iv(ib)
+            do ia = 1, m
+               a = iv(ia)
                recon = 0.0_dp
                do l = 1, rk
                   do k = 1, rk
@@ -413,16 +427,19 @@ contains
       this%pw = this%pr
       call this%factor_solve(this%pw)
       this%pp = this%pw
+      this%pa = this%pr
       rho = dot_product(this%pr, this%pw)
       do it = 1, PCG_MAX
-         ! q = (F^-1 + D) p
-         call dsymv('U', this%r, 1.0_dp, this%finv, this%r, this%pp, 1, 0.0_dp, this%pq, 1)
+         ! q = (F^-1 + D) p = (F^-1 + D_0) p + (D - D_0) p, the first term
+         ! carried along (pa), the second block by block
+         this%pq = this%pa
          do j = 1, size(this%qrank)
             rk = this%qrank(j)
             o = this%qoff(j)
             do l = 1, rk
                do k = 1, rk
-                  this%pq(o + k) = this%pq(o + k) + this%dcur(k, l, j)*this%pp(o + l)
+                  this%pq(o + k) = this%pq(o + k) + &
+                                   (this%dcur(k, l, j) - this%dfac(k, l, j))*this%pp(o + l)
                end do
             end do
          end do
@@ -442,6 +459,7 @@ contains
          call this%factor_solve(this%pw)
          rho_new = dot_product(this%pr, this%pw)
          this%pp = this%pw + (rho_new/rho)*this%pp
+         this%pa = this%pr + (rho_new/rho)*this%pa
          rho = rho_new
       end do
    end subroutine projection_pcg
@@ -559,6 +577,6 @@ contains
       if (allocated(this%finv)) bytes = bytes + 8_i8*size(this%finv, kind=i8)
       if (allocated(this%c)) bytes = bytes + 8_i8*size(this%c, kind=i8)
       if (allocated(this%q)) bytes = bytes + 8_i8*size(this%q, kind=i8)
-      if (allocated(this%dcur)) bytes = bytes + 16_i8*size(this%dcur, kind=i8) + 40_i8*this%r
+      if (allocated(this%dcur)) bytes = bytes + 16_i8*size(this%dcur, kind=i8) + 48_i8*this%r
    end function projection_memory
 end module contact_projection
