@@ -295,32 +295,23 @@ contains
       integer, intent(in) :: ppos(:, :)
       integer, intent(out) :: info
       real(dp), allocatable :: sq(:, :), qsq(:, :)
-      integer :: j, k, a, n, r, p, col, row, ia, iv(size(ppos, 1)), m
+      integer :: j, k, a, n, r, p, col, ia, iv(size(ppos, 1)), m
       n = this%n
       r = this%r
       p = this%p
-      ! S Q, then Q^T S Q, a basis vector's column (row) from its pair's valid dofs
-      allocate (sq(n, n), qsq(n, n))
+      ! Q^T S Q column by column: S q for a basis vector q (its pair's valid
+      ! dofs), then Q^T of it
+      allocate (sq(n, 1), qsq(n, n))
       do j = 1, size(ppos, 2)
          call valid_dofs(ppos(:, j), iv, m)
          do k = 1, this%qm(j)
             col = basis_index(this, j, k)
-            sq(:, col) = 0.0_dp
+            sq(:, 1) = 0.0_dp
             do ia = 1, m
                a = iv(ia)
-               sq(:, col) = sq(:, col) + this%q(a, k, j)*s(:, ppos(a, j))
+               sq(:, 1) = sq(:, 1) + this%q(a, k, j)*s(:, ppos(a, j))
             end do
-         end do
-      end do
-      do j = 1, size(ppos, 2)
-         call valid_dofs(ppos(:, j), iv, m)
-         do k = 1, this%qm(j)
-            row = basis_index(this, j, k)
-            qsq(row, :) = 0.0_dp
-            do ia = 1, m
-               a = iv(ia)
-               qsq(row, :) = qsq(row, :) + this%q(a, k, j)*sq(ppos(a, j), :)
-            end do
+            call rotate_in(sq(:, 1), qsq(:, col))
          end do
       end do
       deallocate (sq)
@@ -346,6 +337,26 @@ contains
          this%finv(col + 1:, col) = this%finv(col, col + 1:)
       end do
       info = 0
+
+   contains
+
+      !> y = Q^T x.
+      subroutine rotate_in(x, y)
+         real(dp), intent(in) :: x(:)
+         real(dp), intent(out) :: y(:)
+         integer :: jj, kk, ib, mm, ivv(size(ppos, 1))
+         real(dp) :: w
+         do jj = 1, size(ppos, 2)
+            call valid_dofs(ppos(:, jj), ivv, mm)
+            do kk = 1, this%qm(jj)
+               w = 0.0_dp
+               do ib = 1, mm
+                  w = w + this%q(ivv(ib), kk, jj)*x(ppos(ivv(ib), jj))
+               end do
+               y(basis_index(this, jj, kk)) = w
+            end do
+         end do
+      end subroutine rotate_in
    end subroutine rotated_setup
 
    !> The coordinate of pair j's basis vector k: 1..r the ranges (U), r+1..n
