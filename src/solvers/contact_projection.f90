@@ -100,6 +100,13 @@ module contact_projection
    !! this many rounding units of g's largest entry: the part left out then
    !! moves the solution no more than the rounding of the solve itself.
    real(dp), parameter :: RANGE_RHS_ULPS = 8.0_dp
+   !> Pairs from which S is held in the pairs' bases (rotated_setup), as the
+   !! increment predictor's and the kept factorization's limit: below, the
+   !! set-up costs little either way, and the suite's small models keep their
+   !! round-off (a deck of 13 pairs and a stiffness ratio of 3e5 between its
+   !! bodies, robust_zero/zero_two_materials_q8, came to rest at another of
+   !! its zero-load positions with the rotated form).
+   integer, parameter :: ROTATE_MIN_PAIRS = 200
 
    type :: contact_projection_t
       logical :: ready = .false.               !! set up, and worth using
@@ -112,6 +119,7 @@ module contact_projection
       real(dp), allocatable :: ls(:, :)        !! (n, n) Cholesky factor of S (upper)
       real(dp), allocatable :: v(:, :)         !! (n, r) S^-1 U F^-1
       logical :: rotated = .false.             !! S held in the pairs' bases (below)
+      integer :: rotate_min_pairs = ROTATE_MIN_PAIRS  !! pairs from which it is
       integer :: p = 0                         !! n - r: the complements' coordinates
       integer, allocatable :: qm(:)            !! (npair) a pair's valid dofs (its basis)
       integer, allocatable :: poff(:)          !! (npair) offset of its complement's coordinates
@@ -208,7 +216,8 @@ contains
          end do
          this%disjoint = all(cnt <= 1)
          ! every equation one pair dof's: the pairs' bases rotate the whole of S
-         this%rotated = all(cnt == 1) .and. this%r + this%p == this%n
+         this%rotated = all(cnt == 1) .and. this%r + this%p == this%n .and. &
+                        np >= this%rotate_min_pairs
       end block
       if (this%rotated) then
          call rotated_setup(this, s, ppos, info)
