@@ -33,8 +33,9 @@
 !! costs more than the rest of a solve.  A new set of symmetric springs
 !! therefore keeps the factor of an earlier one, F^-1 + D_0, and each solve
 !! of (F^-1 + D) z = F^-1 t runs the conjugate gradient method preconditioned
-!! by it (one product with F^-1, the blocks of D and two triangular solves an
-!! iteration, r^2 flops each), until the residual is 1e-15 of the right-hand
+!! by it (two triangular solves an iteration, r^2 flops, and the blocks of
+!! D - D_0: the product (F^-1 + D_0) p is carried along, as the preconditioned
+!! solve itself gives it), until the residual is 1e-15 of the right-hand
 !! side's: the preconditioned matrix differs from I by (F^-1 + D_0)^-1 (D -
 !! D_0), so a small or low-rank change of springs converges in a few
 !! iterations.  A solve that has not converged in PCG_MAX iterations, or
@@ -61,7 +62,7 @@
 !!      (1999), dsyev, dpotrf/dpotri, dtrsv, dgemm, dgemv, dsymv.
 module contact_projection
    use kinds, only: dp, i8
-   use lapack_interfaces, only: dsyev, dpotrf, dpotri, dpotrs, dtrsv, dgemm, dgemv, dsymv
+   use lapack_interfaces, only: dsyev, dpotrf, dpotri, dpotrs, dtrsv, dgemm, dgemv, dtrsm, dsyrk
    implicit none
    private
    public :: contact_projection_t
@@ -99,6 +100,13 @@ module contact_projection
    !! this many rounding units of g's largest entry: the part left out then
    !! moves the solution no more than the rounding of the solve itself.
    real(dp), parameter :: RANGE_RHS_ULPS = 8.0_dp
+   !> Pairs from which S is held in the pairs' bases (rotated_setup), as the
+   !! increment predictor's and the kept factorization's limit: below, the
+   !! set-up costs little either way, and the suite's small models keep their
+   !! round-off (a deck of 13 pairs and a stiffness ratio of 3e5 between its
+   !! bodies, robust_zero/zero_two_materials_q8, came to rest at another of
+   !! its zero-load positions with the rotated form).
+   integer, parameter :: ROTATE_MIN_PAIRS = 200
 
    type :: contact_projection_t
       logical :: ready = .false.               !! set up, and worth using
@@ -110,17 +118,27 @@ module contact_projection
       real(dp), allocatable :: kscale(:)       !! (npair) largest entry of K_ref,j
       real(dp), allocatable :: ls(:, :)        !! (n, n) Cholesky factor of S (upper)
       real(dp), allocatable :: v(:, :)         !! (n, r) S^-1 U F^-1
+      logical :: rotated = .false.             !! S held in the pairs' bases (below)
+      integer :: rotate_min_pairs = ROTATE_MIN_PAIRS  !! pairs from which it is
+      integer :: p = 0                         !! n - r: the complements' coordinates
+      integer, allocatable :: qm(:)            !! (npair) a pair's valid dofs (its basis)
+      integer, allocatable :: poff(:)          !! (npair) offset of its complement's coordinates
+      real(dp), allocatable :: rp(:, :)        !! (p, p) Cholesky factor of S_PP (upper)
+      real(dp), allocatable :: gm(:, :)        !! (p, r) G = S_PP^-1 S_PU
+      real(dp), allocatable :: gp(:), yp(:)    !! (p) work: g_P, S_PP^-1 g_P
       real(dp), allocatable :: finv(:, :)      !! (r, r) F^-1
       real(dp), allocatable :: c(:, :)         !! (r, r) F^-1 + D, then its factor
       real(dp), allocatable :: cdiag(:)        !! (r) its diagonal
       real(dp), allocatable :: t(:), z(:)      !! (r) work
       real(dp), allocatable :: zr(:)           !! (r) right-hand side of a coordinates solve, kept
       real(dp), allocatable :: d(:, :)         !! (nd, nd) work: D_j
-      real(dp), allocatable :: dcur(:, :, :)   !! (nd, nd, npair) D_j of the current springs
-      real(dp), allocatable :: dfac(:, :, :)   !! (nd, nd, npair) D_j of the factor in c
+      real(dp), allocatable :: dcur(:, :, :)   !! (mr, mr, npair) D_j of the current springs,
+                                               !! mr the largest rank (2: normal and tangent)
+      real(dp), allocatable :: dfac(:, :, :)   !! (mr, mr, npair) D_j of the factor in c
       logical :: factored = .false.            !! c holds the factor of F^-1 + dfac
       logical :: stale = .false.               !! dcur differs from dfac: solves iterate
       real(dp), allocatable :: px(:), pr(:), pp(:), pq(:), pw(:)  !! (r) work of the iterations
+      real(dp), allocatable :: pa(:)           !! (r) (F^-1 + dfac) pp, carried along
       integer :: last_iterations = 0           !! iterations of the last solve (0: direct)
       real(dp) :: stiffness = 0.0_dp           !! largest |D_j| / scale of K_ref,j
                                                !! of the current springs
@@ -156,28 +174,59 @@ contains
       real(dp), allocatable :: w(:, :), f(:, :)
       integer :: j, k, a, nd, np, info, col
       this%ready = .false.
-      if (allocated(this%qoff)) deallocate (this%qoff, this%qrank, this%q, this%kscale, this%d)
+      if (allocated(this%qoff)) deallocate (this%qoff, this%qrank, this%q, this%kscale, this%d, &
+                                            this%qm, this%poff)
       if (allocated(this%ls)) deallocate (this%ls)
       if (allocated(this%v)) deallocate (this%v)
+      if (allocated(this%rp)) deallocate (this%rp, this%gm, this%gp, this%yp)
+      this%rotated = .false.
       if (allocated(this%finv)) deallocate (this%finv)
       if (allocated(this%c)) deallocate (this%c, this%cdiag, this%t, this%z, this%zr, this%dcur, &
                                          this%dfac, this%px, &
-                                         this%pr, this%pp, this%pq, this%pw)
+                                         this%pr, this%pp, this%pq, this%pw, this%pa)
       this%factored = .false.
       this%stale = .false.
       this%last_iterations = 0
       this%n = size(s, 1)
       nd = size(ppos, 1)
       np = size(ppos, 2)
-      allocate (this%qoff(np), this%qrank(np), this%q(nd, nd, np), this%kscale(np), this%d(nd, nd))
-      call pair_bases(ppos, kref, this%q, this%qrank, this%kscale, info)
+      allocate (this%qoff(np), this%qrank(np), this%q(nd, nd, np), this%kscale(np), this%d(nd, nd), &
+                this%qm(np), this%poff(np))
+      call pair_bases(ppos, kref, this%q, this%qrank, this%qm, this%kscale, info)
       if (info /= 0) return
       this%r = 0
+      this%p = 0
       do j = 1, np
          this%qoff(j) = this%r
          this%r = this%r + this%qrank(j)
+         this%poff(j) = this%p
+         this%p = this%p + this%qm(j) - this%qrank(j)
       end do
       if (this%r < 1 .or. real(this%r, dp) > MAX_SHARE*this%n) return
+      ! U's blocks are disjoint when no contact equation belongs to two pair
+      ! dofs: U then has orthonormal columns, and U^T g gives g's coordinates
+      block
+         integer, allocatable :: cnt(:)
+         allocate (cnt(this%n))
+         cnt = 0
+         do j = 1, np
+            do a = 1, nd
+               if (ppos(a, j) > 0) cnt(ppos(a, j)) = cnt(ppos(a, j)) + 1
+            end do
+         end do
+         this%disjoint = all(cnt <= 1)
+         ! every equation one pair dof's: the pairs' bases rotate the whole of S
+         this%rotated = all(cnt == 1) .and. this%r + this%p == this%n .and. &
+                        np >= this%rotate_min_pairs
+      end block
+      if (this%rotated) then
+         call rotated_setup(this, s, ppos, info)
+         if (info /= 0) return
+         call allocate_work(this, nd, np)
+         this%range_solves = 0
+         this%ready = .true.
+         return
+      end if
       this%ls = s
       call dpotrf('U', this%n, this%ls, this%n, info)
       if (info /= 0) return
@@ -216,42 +265,148 @@ contains
       allocate (this%v(this%n, this%r))
       call dgemm('N', 'N', this%n, this%r, this%r, 1.0_dp, w, this%n, this%finv, this%r, 0.0_dp, &
                  this%v, this%n)
-      allocate (this%c(this%r, this%r), this%cdiag(this%r), this%t(this%r), this%z(this%r), &
-                this%zr(this%r), &
-                this%dcur(nd, nd, np), this%dfac(nd, nd, np), this%px(this%r), this%pr(this%r), &
-                this%pp(this%r), &
-                this%pq(this%r), this%pw(this%r))
-      this%dcur = 0.0_dp
-      this%dfac = 0.0_dp
-      ! U's blocks are disjoint when no contact equation belongs to two pair
-      ! dofs: U then has orthonormal columns, and U^T g gives g's coordinates
-      block
-         integer, allocatable :: cnt(:)
-         allocate (cnt(this%n))
-         cnt = 0
-         do j = 1, np
-            do a = 1, nd
-               if (ppos(a, j) > 0) cnt(ppos(a, j)) = cnt(ppos(a, j)) + 1
-            end do
-         end do
-         this%disjoint = all(cnt <= 1)
-      end block
+      call allocate_work(this, nd, np)
       this%range_solves = 0
       this%ready = .true.
    end subroutine projection_setup
 
+   !> The arrays of the springs' coordinates and of the iterations.
+   subroutine allocate_work(this, nd, np)
+      class(contact_projection_t), intent(inout) :: this
+      integer, intent(in) :: nd, np
+      allocate (this%c(this%r, this%r), this%cdiag(this%r), this%t(this%r), this%z(this%r), &
+                this%zr(this%r), &
+                this%dcur(max(1, maxval(this%qrank)), max(1, maxval(this%qrank)), np), &
+                this%dfac(max(1, maxval(this%qrank)), max(1, maxval(this%qrank)), np), &
+                this%px(this%r), this%pr(this%r), &
+                this%pp(this%r), &
+                this%pq(this%r), this%pw(this%r), this%pa(this%r))
+      this%dcur = 0.0_dp
+      this%dfac = 0.0_dp
+      if (nd < 0) return
+   end subroutine allocate_work
+
+   !> S in the pairs' orthonormal bases (every contact equation one pair dof's):
+   !! Q = [U P], P the complements of the reference springs' ranges, and
+   !! Q^T S Q = [S_UU S_UP; S_PU S_PP].  Then, by the inverse of a 2 x 2 block
+   !! matrix, F^-1 = (U^T S^-1 U)^-1 = S_UU - S_UP S_PP^-1 S_PU (the Schur
+   !! complement of S_PP), and with G = S_PP^-1 S_PU a solve of
+   !! (S + U D U^T) x = g is, in these coordinates (g_U = U^T g, g_P = P^T g),
+   !!     y_P = S_PP^-1 g_P,  (F^-1 + D) x_U = g_U - G^T g_P,  x_P = y_P - G x_U.
+   !! The set-up is a Cholesky factor of S_PP (p = n - r equations), two
+   !! triangular solves with r columns and a symmetric rank-p update, about
+   !! p^3/3 + 2 p^2 r + p r^2 flops, instead of S's factor, S^-1 U, F's inverse and V
+   !! (n^3/3 + 2 n^2 r + r^3 + 2 n r^2); a solve two triangular solves of p
+   !! equations and two products with G instead of n and V.
+   subroutine rotated_setup(this, s, ppos, info)
+      class(contact_projection_t), intent(inout) :: this
+      real(dp), intent(in) :: s(:, :)
+      integer, intent(in) :: ppos(:, :)
+      integer, intent(out) :: info
+      real(dp), allocatable :: sq(:, :), qsq(:, :)
+      integer :: j, k, a, n, r, p, col, ia, iv(size(ppos, 1)), m
+      n = this%n
+      r = this%r
+      p = this%p
+      ! Q^T S Q column by column: S q for a basis vector q (its pair's valid
+      ! dofs), then Q^T of it
+      allocate (sq(n, 1), qsq(n, n))
+      do j = 1, size(ppos, 2)
+         call valid_dofs(ppos(:, j), iv, m)
+         do k = 1, this%qm(j)
+            col = basis_index(this, j, k)
+            sq(:, 1) = 0.0_dp
+            do ia = 1, m
+               a = iv(ia)
+               sq(:, 1) = sq(:, 1) + this%q(a, k, j)*s(:, ppos(a, j))
+            end do
+            call rotate_in(sq(:, 1), qsq(:, col))
+         end do
+      end do
+      deallocate (sq)
+      allocate (this%rp(max(1, p), max(1, p)), this%gm(max(1, p), r), this%gp(max(1, p)), &
+                this%yp(max(1, p)))
+      this%rp = 0.0_dp
+      this%gm = 0.0_dp
+      if (p > 0) then
+         this%rp(1:p, 1:p) = qsq(r + 1:n, r + 1:n)
+         call dpotrf('U', p, this%rp, p, info)
+         if (info /= 0) return
+         ! Z = R^-T S_PU into gm; F^-1 = S_UU - Z^T Z; G = R^-1 Z
+         this%gm(1:p, :) = qsq(r + 1:n, 1:r)
+         call dtrsm('L', 'U', 'T', 'N', p, r, 1.0_dp, this%rp, p, this%gm, p)
+      end if
+      allocate (this%finv(r, r))
+      this%finv = qsq(1:r, 1:r)
+      if (p > 0) then
+         call dsyrk('U', 'T', r, p, -1.0_dp, this%gm, p, 1.0_dp, this%finv, r)
+         call dtrsm('L', 'U', 'N', 'N', p, r, 1.0_dp, this%rp, p, this%gm, p)
+      end if
+      do col = 1, r
+         this%finv(col + 1:, col) = this%finv(col, col + 1:)
+      end do
+      info = 0
+
+   contains
+
+      !> y = Q^T x.
+      subroutine rotate_in(x, y)
+         real(dp), intent(in) :: x(:)
+         real(dp), intent(out) :: y(:)
+         integer :: jj, kk, ib, mm, ivv(size(ppos, 1))
+         real(dp) :: w
+         do jj = 1, size(ppos, 2)
+            call valid_dofs(ppos(:, jj), ivv, mm)
+            do kk = 1, this%qm(jj)
+               w = 0.0_dp
+               do ib = 1, mm
+                  w = w + this%q(ivv(ib), kk, jj)*x(ppos(ivv(ib), jj))
+               end do
+               y(basis_index(this, jj, kk)) = w
+            end do
+         end do
+      end subroutine rotate_in
+   end subroutine rotated_setup
+
+   !> The coordinate of pair j's basis vector k: 1..r the ranges (U), r+1..n
+   !! the complements (P).
+   pure integer function basis_index(this, j, k) result(i)
+      class(contact_projection_t), intent(in) :: this
+      integer, intent(in) :: j, k
+      if (k <= this%qrank(j)) then
+         i = this%qoff(j) + k
+      else
+         i = this%r + this%poff(j) + k - this%qrank(j)
+      end if
+   end function basis_index
+
+   !> The valid dofs of a pair (ppos > 0), in order.
+   pure subroutine valid_dofs(pos, iv, m)
+      integer, intent(in) :: pos(:)
+      integer, intent(out) :: iv(:), m
+      integer :: a
+      m = 0
+      do a = 1, size(pos)
+         if (pos(a) > 0) then
+            m = m + 1
+            iv(m) = a
+         end if
+      end do
+   end subroutine valid_dofs
+
    !> Q_j, an orthonormal basis of the range of each pair's reference springs
    !! on its valid dofs, and their scale; info /= 0 if LAPACK fails.
-   subroutine pair_bases(ppos, kref, q, qrank, kscale, info)
+   subroutine pair_bases(ppos, kref, q, qrank, qm, kscale, info)
       integer, intent(in) :: ppos(:, :)
       real(dp), intent(in) :: kref(:, :, :)
       real(dp), intent(out) :: q(:, :, :), kscale(:)
-      integer, intent(out) :: qrank(:), info
+      integer, intent(out) :: qrank(:), qm(:), info
       real(dp) :: a(size(ppos, 1), size(ppos, 1)), ev(size(ppos, 1)), work(4*size(ppos, 1))
-      integer :: idx(size(ppos, 1)), j, m, k, nd
+      integer :: idx(size(ppos, 1)), j, m, k, nd, l
       nd = size(ppos, 1)
       q = 0.0_dp
       qrank = 0
+      qm = 0
       kscale = 0.0_dp
       info = 0
       do j = 1, size(ppos, 2)
@@ -262,16 +417,32 @@ contains
                idx(m) = k
             end if
          end do
+         qm(j) = m
          if (m == 0) cycle
          a(1:m, 1:m) = kref(idx(1:m), idx(1:m), j)
          kscale(j) = maxval(abs(a(1:m, 1:m)))
-         if (.not. kscale(j) > 0.0_dp) cycle
+         if (.not. kscale(j) > 0.0_dp) then
+            ! no springs: the complement is the whole of the pair's dofs
+            do k = 1, m
+               q(idx(k), k, j) = 1.0_dp
+            end do
+            cycle
+         end if
          call dsyev('V', 'U', m, a, nd, ev, work, size(work), info)
          if (info /= 0) return
          do k = 1, m
             if (ev(k) > RANK_TOL*maxval(abs(ev(1:m)))) then
                qrank(j) = qrank(j) + 1
                q(idx(1:m), qrank(j), j) = a(1:m, k)
+            end if
+         end do
+         ! columns qrank+1 .. m: the complement of the range (the rest of the
+         ! orthonormal eigenvectors), for the rotated form of S
+         l = qrank(j)
+         do k = 1, m
+            if (.not. ev(k) > RANK_TOL*maxval(abs(ev(1:m)))) then
+               l = l + 1
+               q(idx(1:m), l, j) = a(1:m, k)
             end if
          end do
       end do
@@ -288,7 +459,8 @@ contains
       integer, intent(in) :: ppos(:, :)
       real(dp), intent(in) :: kc(:, :, :)
       logical, intent(out) :: done
-      integer :: j, k, l, a, b, nd, rk
+      integer :: j, k, l, a, b, nd, rk, m, ia, ib
+      integer :: iv(size(ppos, 1))
       real(dp) :: recon
       logical :: symmetric
       done = .false.
@@ -298,14 +470,22 @@ contains
       this%stiffness = 0.0_dp
       do j = 1, size(ppos, 2)
          rk = this%qrank(j)
+         ! the pair's valid dofs, in order (a node-to-node pair uses 4 of nd)
+         m = 0
+         do a = 1, nd
+            if (ppos(a, j) > 0) then
+               m = m + 1
+               iv(m) = a
+            end if
+         end do
          ! D_j = Q_j^T kc_j Q_j on the valid dofs
          do l = 1, rk
             do k = 1, rk
                this%d(k, l) = 0.0_dp
-               do b = 1, nd
-                  if (ppos(b, j) <= 0) cycle
-                  do a = 1, nd
-                     if (ppos(a, j) <= 0) cycle
+               do ib = 1, m
+                  b = iv(ib)
+                  do ia = 1, m
+                     a = iv(ia)
                      this%d(k, l) = this%d(k, l) + this%q(a, k, j)*kc(a, b, j)*this%q(b, l, j)
                   end do
                end do
@@ -316,10 +496,10 @@ contains
             this%stiffness = max(this%stiffness, maxval(abs(this%d(1:rk, 1:rk)))/this%kscale(j))
          end if
          ! kc_j = Q_j D_j Q_j^T, or the coordinates do not hold it
-         do b = 1, nd
-            if (ppos(b, j) <= 0) cycle
-            do a = 1, nd
-               if (ppos(a, j) <= 0) cycle
+         do ib = 1, m
+            b = iv(ib)
+            do ia = 1, m
+               a = iv(ia)
                recon = 0.0_dp
                do l = 1, rk
                   do k = 1, rk
@@ -413,16 +593,19 @@ contains
       this%pw = this%pr
       call this%factor_solve(this%pw)
       this%pp = this%pw
+      this%pa = this%pr
       rho = dot_product(this%pr, this%pw)
       do it = 1, PCG_MAX
-         ! q = (F^-1 + D) p
-         call dsymv('U', this%r, 1.0_dp, this%finv, this%r, this%pp, 1, 0.0_dp, this%pq, 1)
+         ! q = (F^-1 + D) p = (F^-1 + D_0) p + (D - D_0) p, the first term
+         ! carried along (pa), the second block by block
+         this%pq = this%pa
          do j = 1, size(this%qrank)
             rk = this%qrank(j)
             o = this%qoff(j)
             do l = 1, rk
                do k = 1, rk
-                  this%pq(o + k) = this%pq(o + k) + this%dcur(k, l, j)*this%pp(o + l)
+                  this%pq(o + k) = this%pq(o + k) + &
+                                   (this%dcur(k, l, j) - this%dfac(k, l, j))*this%pp(o + l)
                end do
             end do
          end do
@@ -442,6 +625,7 @@ contains
          call this%factor_solve(this%pw)
          rho_new = dot_product(this%pr, this%pw)
          this%pp = this%pw + (rho_new/rho)*this%pp
+         this%pa = this%pr + (rho_new/rho)*this%pa
          rho = rho_new
       end do
    end subroutine projection_pcg
@@ -456,6 +640,10 @@ contains
       logical, intent(out) :: ok
       integer :: j, k, a
       ok = .true.
+      if (this%rotated) then
+         call rotated_solve(this, ppos, x, ok)
+         return
+      end if
       if (this%in_range(ppos, x)) then
          ! g = U f (the springs' own forces: the later solutions of an
          ! attempt): x = V (F^-1 + D)^-1 f, without S's factor or F^-1, since
@@ -488,6 +676,73 @@ contains
       this%t = this%t - this%z
       call dgemv('N', this%n, this%r, -1.0_dp, this%v, this%n, this%t, 1, 1.0_dp, x, 1)
    end subroutine projection_solve
+
+   !> projection_solve with S in the pairs' bases (rotated_setup): a right-hand
+   !! side of the springs' own forces (g = U f) has g_P = 0.
+   subroutine rotated_solve(this, ppos, x, ok)
+      class(contact_projection_t), intent(inout) :: this
+      integer, intent(in) :: ppos(:, :)
+      real(dp), intent(inout) :: x(:)
+      logical, intent(out) :: ok
+      integer :: j, k, a, ia, m, iv(size(ppos, 1)), p, r
+      real(dp) :: w
+      logical :: range
+      p = this%p
+      r = this%r
+      range = this%in_range(ppos, x)
+      if (range) then
+         this%z = this%t
+      else
+         ! g_U (t) and g_P
+         do j = 1, size(ppos, 2)
+            call valid_dofs(ppos(:, j), iv, m)
+            do k = 1, this%qm(j)
+               w = 0.0_dp
+               do ia = 1, m
+                  a = iv(ia)
+                  w = w + this%q(a, k, j)*x(ppos(a, j))
+               end do
+               if (k <= this%qrank(j)) then
+                  this%t(this%qoff(j) + k) = w
+               else
+                  this%gp(this%poff(j) + k - this%qrank(j)) = w
+               end if
+            end do
+         end do
+         ! y_P = S_PP^-1 g_P;  right-hand side g_U - G^T g_P
+         this%z = this%t
+         if (p > 0) then
+            this%yp(1:p) = this%gp(1:p)
+            call dtrsv('U', 'T', 'N', p, this%rp, p, this%yp, 1)
+            call dtrsv('U', 'N', 'N', p, this%rp, p, this%yp, 1)
+            call dgemv('T', p, r, -1.0_dp, this%gm, p, this%gp, 1, 1.0_dp, this%z, 1)
+         end if
+      end if
+      call this%coordinates_solve(ok)
+      if (.not. ok) return
+      ! x_P = y_P - G x_U (y_P = 0 for g = U f)
+      if (p > 0) then
+         if (range) this%yp(1:p) = 0.0_dp
+         call dgemv('N', p, r, -1.0_dp, this%gm, p, this%z, 1, 1.0_dp, this%yp, 1)
+      end if
+      ! x = Q [x_U; x_P]
+      do j = 1, size(ppos, 2)
+         call valid_dofs(ppos(:, j), iv, m)
+         do ia = 1, m
+            a = iv(ia)
+            w = 0.0_dp
+            do k = 1, this%qm(j)
+               if (k <= this%qrank(j)) then
+                  w = w + this%q(a, k, j)*this%z(this%qoff(j) + k)
+               else
+                  w = w + this%q(a, k, j)*this%yp(this%poff(j) + k - this%qrank(j))
+               end if
+            end do
+            x(ppos(a, j)) = w
+         end do
+      end do
+      if (range) this%range_solves = this%range_solves + 1
+   end subroutine rotated_solve
 
    !> z = (F^-1 + D)^-1 z for the current springs: the kept factor's
    !! iteration, or the factor (ok = .false.: the springs are not clearly
@@ -556,9 +811,10 @@ contains
       bytes = 0
       if (allocated(this%ls)) bytes = bytes + 8_i8*size(this%ls, kind=i8)
       if (allocated(this%v)) bytes = bytes + 8_i8*size(this%v, kind=i8)
+      if (allocated(this%rp)) bytes = bytes + 8_i8*(size(this%rp, kind=i8) + size(this%gm, kind=i8))
       if (allocated(this%finv)) bytes = bytes + 8_i8*size(this%finv, kind=i8)
       if (allocated(this%c)) bytes = bytes + 8_i8*size(this%c, kind=i8)
       if (allocated(this%q)) bytes = bytes + 8_i8*size(this%q, kind=i8)
-      if (allocated(this%dcur)) bytes = bytes + 16_i8*size(this%dcur, kind=i8) + 40_i8*this%r
+      if (allocated(this%dcur)) bytes = bytes + 16_i8*size(this%dcur, kind=i8) + 48_i8*this%r
    end function projection_memory
 end module contact_projection

@@ -12,7 +12,7 @@ module lapack_interfaces
    use kinds, only: dp
    implicit none
    private
-   public :: dgemm, dgemv, dsymv, dtrsv, dgetrf, dgetrs, dpotrf, dpotri, dpotrs, dtrtrs, dsyev
+   public :: dgemm, dgemv, dsymv, dtrsv, dtrsm, dsyrk, dgetrf, dgetrs, dpotrf, dpotri, dpotrs, dtrtrs, dsyev
 
    interface
       subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
@@ -43,6 +43,20 @@ module lapack_interfaces
          real(dp), intent(in) :: a(lda, *)
          real(dp), intent(inout) :: x(*)
       end subroutine dtrsv
+      subroutine dtrsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
+         import :: dp
+         character(len=1), intent(in) :: side, uplo, transa, diag
+         integer, intent(in) :: m, n, lda, ldb
+         real(dp), intent(in) :: alpha, a(lda, *)
+         real(dp), intent(inout) :: b(ldb, *)
+      end subroutine dtrsm
+      subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
+         import :: dp
+         character(len=1), intent(in) :: uplo, trans
+         integer, intent(in) :: n, k, lda, ldc
+         real(dp), intent(in) :: alpha, beta, a(lda, *)
+         real(dp), intent(inout) :: c(ldc, *)
+      end subroutine dsyrk
       subroutine dgetrf(m, n, a, lda, ipiv, info)
          import :: dp
          integer, intent(in) :: m, n, lda
