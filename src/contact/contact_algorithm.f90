@@ -27,13 +27,14 @@ module contact_algorithm
                             law_drift, &
                             tangential_drift
    use contact_rough_pair, only: rough_outcome_t, evaluate_rough_pair, touching_band
-   use contact_ideal_pair, only: evaluate_ideal, augment_multipliers
+   use contact_ideal_pair, only: evaluate_ideal, augment_multipliers, early_update
    implicit none
    private
 
    public :: pair_state_t, pair_mode_t, contact_state_t
    public :: contact_init, begin_increment, pair_matrix, evaluate_pairs, commit_increment, &
-             pair_force_vector, law_drift, check_invariants, augment_multipliers, pair_dofs, &
+             pair_force_vector, law_drift, check_invariants, augment_multipliers, early_update, &
+             pair_dofs, &
              start_force_normal, frozen_pairs, tangential_drift, drop_regularisation, &
              regularise_slip, &
              anchor_regularisation, release_anchors, settle_frozen, open_held_tension, &

@@ -17,7 +17,7 @@ module increment_attempt
    use contact_assembly, only: contact_springs_t
    use contact_types, only: contact_options_t, contact_pair_t
    use contact_algorithm, only: contact_state_t, begin_increment, evaluate_pairs, &
-         augment_multipliers, &
+         augment_multipliers, early_update, &
                                 drop_regularisation, regularise_slip, &
                                 anchor_regularisation, release_anchors, settle_frozen, &
                                 open_held_tension, hold_at_rest
@@ -448,7 +448,13 @@ contains
             call anchor_regularisation(st)
             anchored = .true.
          end if
-         if (att%rnorm <= att%rtol .and. &
+         ! ideal contact: an early multiplier update (inexact Uzawa, early_update)
+         if (att%rnorm > att%rtol .and. .not. anchored .and. &
+             early_update(m%contact, st, att%rnorm*fscale)) then
+            call augment_multipliers(m%contact, st, done, early=.true.)
+            call update_modes(again)
+            if (again) cycle
+         else if (att%rnorm <= att%rtol .and. &
              (.not. newton .or. dnorm <= m%contact%opts%tol_displacement .or. &
               (iter == 1 .and. .not. an%pred%predicted))) then
             ! a pair held below its zero-force point with a tension beyond the limit is off
@@ -473,16 +479,10 @@ contains
                                    m%contact%opts%tol_residual, att)
                if (att%rnorm > att%rtol) exit
             end if
-            if (.not. st%has_ideal) then
-               att%converged = .true.
-               exit
-            end if
-            ! ideal contact: the modes hold and the bodies balance the forces of the
-            ! current multipliers; converged when the penetrations are within
-            ! tolerance, else an Uzawa update and the forces of the new multipliers
-            ! drive the next solution
-            call augment_multipliers(m%contact, st, done)
-            rshare = 0.0_dp     ! (the multipliers' forces drive the next solution)
+            ! ideal contact: the bodies balance the forces of the current multipliers; converged
+            ! when the penetrations are within tolerance, else an Uzawa update (augment_multipliers)
+            done = .not. st%has_ideal
+            if (.not. done) call augment_multipliers(m%contact, st, done)
             if (done) then
                att%converged = .true.
                exit

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Check the ideal-contact conditions at every increment end of a result file.
 
-    check_ideal_contact.py RESULT.h5 --hmin H [--max-solutions N] [--rest]
+    check_ideal_contact.py RESULT.h5 --hmin H [--max-solutions N] [--rest | --rest-free]
 
 For every kept increment (docs/contact.md, "Ideal contact"):
 
@@ -20,7 +20,11 @@ For every kept increment (docs/contact.md, "Ideal contact"):
 * --rest: the last increment holds a zero load: every contact force vanishes (1e-10 of
   the largest of the run) and the bodies are back at rest where they started (every
   displacement within 1e-9 of the largest of the run): elastic bodies with no load and no
-  contact force are stress-free, and a body held only by contact is at rest touching.
+  contact force are stress-free, and a body held only by contact is at rest touching;
+* --rest-free: as --rest for a body that only friction held tangentially: the forces vanish
+  and the bodies are stress-free (every nodal stress within 1e-9 of the largest of the run),
+  but the body may rest anywhere along its free direction (a rigid translation, which no
+  friction fixes at zero force), so its displacement is not checked.
 
 Prints one line per increment (load factor, solutions, closed / slipping pairs) and exits 1
 when a condition fails.  Needs tools/k2d on the Python path.
@@ -39,6 +43,7 @@ def main():
     ap.add_argument("--hmin", type=float, required=True, help="smallest contact element length")
     ap.add_argument("--max-solutions", type=int, default=0)
     ap.add_argument("--rest", action="store_true")
+    ap.add_argument("--rest-free", action="store_true", help="--rest without the displacement (a free translation)")
     args = ap.parse_args()
     r = Result(args.result)
     fails = []
@@ -83,15 +88,19 @@ def main():
         bad("a slipping pair off |F_T| = mu F_n", slipping & (np.abs(np.abs(ft) - mu * fn) > fround))
         bad("a slipping pair's force against its slip",
             slipping & (np.abs(dslip) > tol) & (np.abs(ft) > fround) & (ft * dslip < 0.0))
-    if args.rest:
+    if args.rest or args.rest_free:
         last = r.last
         if np.any(np.abs(last.load_factor) > 0.0):
             fails.append("--rest: the last increment's load factor is not zero")
         f = np.concatenate([np.abs(last.contact("force_normal")), np.abs(last.contact("force_tangential"))])
         if np.max(f) > fround:
             fails.append("--rest: a contact force %.3e > %.3e left at zero load" % (np.max(f), fround))
+        smax = max(float(np.max(np.abs(s.field("stress_nodal")))) for s in r.steps)
+        sig = float(np.max(np.abs(last.field("stress_nodal"))))
+        if sig > 1.0e-9 * smax:
+            fails.append("--rest: stress %.3e > 1e-9 of the largest (%.3e) at zero load" % (sig, smax))
         u = np.max(np.abs(last.field("displacement")))
-        if u > 1.0e-9 * umax:
+        if args.rest and u > 1.0e-9 * umax:
             fails.append("--rest: displacement %.3e > 1e-9 of the largest (%.3e) at zero load" % (u, umax))
     for f in fails:
         print("FAIL  " + f)
