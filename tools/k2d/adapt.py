@@ -918,8 +918,9 @@ def write_size_view(path, result, hnew, msh=None, uniform_contact=False):
     """A gmsh post-processing view (.pos) of the sizes at the corners of the current mesh: the
     smallest of the sizes wanted by the elements around each node, with ghost cells beyond the
     boundary (k2d.adapt_mesh.boundary_ghosts); with `uniform_contact` one size along each curved
-    contact zone (contact_spacing), and surface A the finer side (interface_sizes).  With `msh`, the .msh the result was computed
-    on, one view per body (the cells connected through shared nodes): the ghosts of one body
+    contact zone (contact_spacing), and surface A the finer side (interface_sizes).  With `msh`,
+    the .msh the result was computed on, one view per body (the cells connected through shared
+    nodes): the ghosts of one body
     reach into the gap of a contact, and with one view of everything gmsh took either body's
     size there (a Q8 Hertz model's cylinder took the coarser sizes of the half-plane and stopped
     with E-SEGMENT-SIDE); gmsh_mesh meshes each body's inside from its own view and the curves
