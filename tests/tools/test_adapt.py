@@ -33,6 +33,13 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt.py [-v] [CLAS
   model's second adaptive mesh solves (it stopped with E-SEGMENT-SIDE before).
 * CurvedContact: the uniform route's meshes put the nodes of the cylinder's contact arc (Q8
   midside nodes too) on the circle.
+* SingularEdges: a flat punch's edge (p ~ r^-1/2, uniform and graded pairs) is a singular edge,
+  Hertz's axis (the largest pressure, also with 1 % of noise on it) and edge are not; a curved
+  contact zone (gaps x^2 / 2R) gets one size along both surfaces (--uniform-contact), a flat or
+  tilted one and a zone ended by a singular edge do not.
+* KeyOutputConvergence: an output whose successive differences do not decrease (per unit of
+  log(DOFs) on unequal steps) is flagged "not converging (singular point?)" in the .md, the CSV
+  and the terminal; converging, unchanged and oscillating ones are not.
 * ReferenceFit: the overkill reference of tools/adapt_validation.py reproduces a quadratic stress
   field between its Gauss points (corners and straight edges included); CardDeck's Lame test
   checks the true error against a reference with the closed-form stresses (= the exact error).
