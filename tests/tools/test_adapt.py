@@ -550,6 +550,9 @@ class KeyOutputConvergence(unittest.TestCase):
         self.assertEqual(ad.convergence_note([h ** -0.5 for h in hs]), ad.NOT_CONVERGING)
         # differences that stay equal: observed order 0
         self.assertEqual(ad.convergence_note([1.0, 1.5, 2.0]), ad.NOT_CONVERGING)
+        # a change below SIGNIFICANT_CHANGE of the value is no singular point's growth
+        self.assertEqual(ad.convergence_note([1.0, 1.002, 1.004]), "")
+        self.assertEqual(ad.convergence_note([1.0, 1.02, 1.04]), ad.NOT_CONVERGING)
         # oscillating: not this flag's (Richardson's table says "oscillating")
         self.assertEqual(ad.convergence_note([1.0, 1.2, 0.8]), "")
         self.assertEqual(ad.convergence_note([1.0, 1.2, 1.1]), "")
