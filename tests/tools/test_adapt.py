@@ -486,12 +486,13 @@ class SingularEdges(unittest.TestCase):
 
     def test_punch_edge_singular_hertz_axis_not(self):
         edges = np.linspace(0.0, 1.0, 11)
+        mid = 0.5 * (edges[1:] + edges[:-1])
         kc = np.arange(10)
         # a flat punch's half face, p ~ (1 - x^2)^-1/2 (Sadowsky): the outer end is singular,
         # the axis end (the smallest pressure) is not
         punch = self.mid_pressures(edges, lambda x: 1.0 / np.sqrt(np.maximum(1.0 - x * x, 1e-300)))
-        self.assertTrue(ad.singular_end(punch, kc, -1))
-        self.assertFalse(ad.singular_end(punch, kc, 0))
+        self.assertTrue(ad.singular_end(punch, mid, kc, -1))
+        self.assertFalse(ad.singular_end(punch, mid, kc, 0))
         # Hertz's half zone, p ~ (1 - x^2)^1/2: neither end -- the axis pair has the largest
         # pressure, above the mean (the old rule's only test, which took it for singular), also
         # with 1 % of noise on it
@@ -500,12 +501,18 @@ class SingularEdges(unittest.TestCase):
         for noise in (1.0, 1.01):
             h = hertz.copy()
             h[0] *= noise
-            self.assertFalse(ad.singular_end(h, kc, 0))
-            self.assertFalse(ad.singular_end(h, kc, -1))
+            self.assertFalse(ad.singular_end(h, mid, kc, 0))
+            self.assertFalse(ad.singular_end(h, mid, kc, -1))
         # a punch graded towards its edge: still singular
         graded = 1.0 - (1.0 - np.linspace(0.0, 1.0, 11)) ** 2
         self.assertTrue(ad.singular_end(self.mid_pressures(graded, lambda x: 1.0 / np.sqrt(
-            np.maximum(1.0 - x * x, 1e-300))), kc, -1))
+            np.maximum(1.0 - x * x, 1e-300))), 0.5 * (graded[1:] + graded[:-1]), kc, -1))
+        # Hertz's axis on a coarse contact mesh, where the ellipse itself falls by more than
+        # SINGULAR_RISE from the axis pair to the next: the slope falls towards the axis
+        coarse = np.linspace(0.0, 1.0, 4)
+        hc = self.mid_pressures(coarse, lambda x: np.sqrt(np.maximum(1.0 - x * x, 0.0)))
+        self.assertGreater(hc[0], ad.SINGULAR_RISE * hc[1])
+        self.assertFalse(ad.singular_end(hc, 0.5 * (coarse[1:] + coarse[:-1]), np.arange(3), 0))
 
     def test_curved_zone_uniform_spacing(self):
         # a cylinder's chords on a graded contact mesh: the zone's gaps are x^2 / (2R), not

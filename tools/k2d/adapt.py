@@ -671,21 +671,33 @@ def new_sizes(eta, h, p, target, max_elements=None, shrink=(0.2, 2.0), safety=0.
 SINGULAR_RISE = 1.1
 
 
-def singular_end(pr, kc, end, rise=SINGULAR_RISE):
+def singular_end(pr, s, kc, end, rise=SINGULAR_RISE):
     """Whether the end `end` (0: the first, -1: the last) of a contact zone is a flat-punch-type
-    singular edge: its closed pairs kc in the order of their positions along the interface, their
-    pressures pr; the outermost pair's pressure at least the mean of the closed pairs' and at
-    least `rise` times its inner neighbour's.  Where p ~ r^-1/2 the two outermost pairs'
-    tributary means differ by a factor of about 2.7 on a uniform spacing (more than 1.4 on any
-    grading); the end of a half model on its symmetry axis, where the pressure has a flat
-    maximum (Hertz's axis), differs from its neighbour by the discretization's noise, about
-    0.5 % -- before this rule that maximum was taken for a singular edge and refined at its
-    rate, grading the contact mesh towards the axis."""
+    singular edge: its closed pairs kc in the order of their positions s along the interface
+    (s indexed by pair), their pressures pr.  The outermost pair's pressure at least the mean of
+    the closed pairs' and at least `rise` times its inner neighbour's, and, with three or more
+    closed pairs, the pressure rising towards the end ever more steeply (the slope between the
+    two outermost pairs above the slope between the next two), as p ~ r^-1/2 does.  Where
+    p ~ r^-1/2 the two outermost pairs' tributary means differ by a factor of about 2.7 on a
+    uniform spacing (more than 1.4 on any grading).  The end of a half model on its symmetry
+    axis, where the pressure has a flat maximum (Hertz's axis), passes neither test: its pair
+    differs from its neighbour by the discretization's scatter, about 0.5 %, on a fine contact
+    mesh, and where the spacing is coarse enough for the ellipse's own fall to exceed `rise`,
+    the slope falls towards the axis.  Before these tests that maximum was taken for a singular
+    edge and sized at the singular rate."""
     if len(kc) < 2:
         return False
     mean = float(np.mean(pr[kc]))
     j, inner = (kc[0], kc[1]) if end == 0 else (kc[-1], kc[-2])
-    return mean > 0.0 and pr[j] >= mean and pr[j] >= rise * pr[inner]
+    if not (mean > 0.0 and pr[j] >= mean and pr[j] >= rise * pr[inner]):
+        return False
+    if len(kc) < 3:
+        return True
+    outer2 = kc[2] if end == 0 else kc[-3]
+    d01, d12 = abs(s[j] - s[inner]), abs(s[inner] - s[outer2])
+    if d01 <= 0.0 or d12 <= 0.0:
+        return True
+    return (pr[j] - pr[inner]) / d01 > (pr[inner] - pr[outer2]) / d12
 
 
 def singular_rates(result, lam=0.5):
@@ -712,7 +724,7 @@ def singular_rates(result, lam=0.5):
         k = k[np.argsort(pos[k, axis])]
         kc = k[closed[k]]
         for end in (0, -1):
-            if not singular_end(pr, kc, end):
+            if not singular_end(pr, pos[:, axis], kc, end):
                 continue
             j = kc[end]
             nodes.add(int(c.node_a[j]) - 1)
@@ -875,7 +887,7 @@ def curved_contact_zones(result, margin=CONTACT_MARGIN, bend=0.05):
         kc = k[closed[k]]
         if len(kc) < 1:
             continue
-        if any(singular_end(pr, kc, end) for end in (0, -1)):
+        if any(singular_end(pr, pos[:, axis], kc, end) for end in (0, -1)):
             continue                        # a singular edge: keep the grading
         s = pos[k, axis]
         lo, hi = float(pos[kc[0], axis]), float(pos[kc[-1], axis])
