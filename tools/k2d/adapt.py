@@ -916,9 +916,9 @@ def contact_spacing(result, nodal, margin=CONTACT_MARGIN):
     mesh the chords' offset h^2 / (6 R) of the mortar gap varies along the zone, on a uniform
     one it is a rigid shift that changes no pressure; this was the suspected source of the
     peak pressure's +-0.5 % noise on Hertz's adaptive meshes.  Measured (docs/adaptivity.md,
-    "Uniform spacing along a curved contact"): it makes the offset uniform to 0.04 % of the
-    zone's edge gap, but the noise stays (the pair-to-pair scatter of the pressure is as large on
-    uniform contact meshes), so it is not the route's default (tools/adapt.py
+    "The peak pressure's scatter on Hertz's adaptive meshes"): it makes the offset uniform to
+    0.04 % of the zone's edge gap and the pressure profile smoother, but the peak pressure
+    scatters as much (+-0.6 %), so it is not the route's default (tools/adapt.py
     --uniform-contact).  Returns (sizes, nodes changed)."""
     nodal = np.array(nodal, dtype=float)
     changed = 0
