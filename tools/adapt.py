@@ -3,6 +3,7 @@
 
     tools/adapt.py DECK --target 0.01 [--max-dofs N] [-o DIR] [--exe KONTAKT2D]
                    [--uniform] [--compare] [--max-steps N] [--max-growth G] [--no-singular]
+                   [--uniform-contact]
 
 A deck with a MESH block whose .geo lies beside its .msh is remeshed by gmsh: adaptively, from
 a size field made of the error indicators of the last run (the program's `error_indicator`
@@ -46,6 +47,9 @@ def main(argv=None):
                     help="adaptive: elements of a mesh over the last one's, at most "
                     "(default %g; 0: no limit)"
                     % ad.MAX_GROWTH)
+    ap.add_argument("--uniform-contact", action="store_true",
+                    help="adaptive: one size along each curved contact zone, the smallest the "
+                    "indicators ask there (docs/adaptivity.md: measured, no gain on Hertz)")
     ap.add_argument("--no-singular", action="store_true",
                     help="adaptive: no singular rate at the contact's singular edges "
                     "(docs/adaptivity.md)")
@@ -72,7 +76,8 @@ def main(argv=None):
         if kind == "mesh":
             rows = ad.adapt_mesh_deck(args.deck, args.target, args.max_dofs, out, exe, uniform=args.uniform,
                                       max_steps=args.max_steps, max_growth=args.max_growth or None,
-                                      singular=not args.no_singular)
+                                      singular=not args.no_singular,
+                                      uniform_contact=args.uniform_contact)
             if args.compare and not args.uniform:
                 rows += ad.adapt_mesh_deck(args.deck, args.target, args.max_dofs, out, exe, uniform=True,
                                            max_steps=args.max_steps)
@@ -84,6 +89,7 @@ def main(argv=None):
         print("adapt.py: error: %s" % e, file=sys.stderr)
         return 3 if "kontakt2d" in str(e) and "exit code" in str(e) else 2
     ad.cumulate(rows)
+    ad.print_flags(rows)
     md = ad.write_tables(rows, rich, out, name, args.deck, args.target, args.max_dofs)
     png = ad.plot_convergence(rows, os.path.join(out, name + "_adapt.png"), args.target)
     first = [r for r in rows if r["method"] == rows[0]["method"]]

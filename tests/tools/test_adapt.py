@@ -33,6 +33,13 @@ by hand:  PYTHONPATH=tools /usr/bin/python3 tests/tools/test_adapt.py [-v] [CLAS
   model's second adaptive mesh solves (it stopped with E-SEGMENT-SIDE before).
 * CurvedContact: the uniform route's meshes put the nodes of the cylinder's contact arc (Q8
   midside nodes too) on the circle.
+* SingularEdges: a flat punch's edge (p ~ r^-1/2, uniform and graded pairs) is a singular edge,
+  Hertz's axis (the largest pressure, also with 1 % of noise on it) and edge are not; a curved
+  contact zone (gaps x^2 / 2R) gets one size along both surfaces (--uniform-contact), a flat or
+  tilted one and a zone ended by a singular edge do not.
+* KeyOutputConvergence: an output whose successive differences do not decrease (per unit of
+  log(DOFs) on unequal steps) is flagged "not converging (singular point?)" in the .md, the CSV
+  and the terminal; converging, unchanged and oscillating ones are not.
 * ReferenceFit: the overkill reference of tools/adapt_validation.py reproduces a quadratic stress
   field between its Gauss points (corners and straight edges included); CardDeck's Lame test
   checks the true error against a reference with the closed-form stresses (= the exact error).
@@ -425,6 +432,195 @@ class Sizes(unittest.TestCase):
         self.assertAlmostEqual(eta[7] ** 2 * sing[7] ** 1, per_element, delta=1e-10 * per_element)
         self.assertLess(sing[7], 0.1 * smooth[7])
         np.testing.assert_array_equal(np.delete(sing, 7), np.delete(smooth, 7))
+
+
+class _Contact(dict):
+    """A stand-in for a result's /contact group (k2d.results.ContactDefinition): attributes and
+    `in`."""
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name)
+
+    @property
+    def npair(self):
+        return len(self["node_a"])
+
+
+class _Step:
+    def __init__(self, data):
+        self.data, self.attrs, self.number = data, {}, 1
+
+    def contact(self, name):
+        return self.data[name]
+
+
+class _Result:
+    """A stand-in for a result with one increment and node-to-node pairs along y = 0: node a of
+    pair j is node j, node b node npair + j."""
+
+    def __init__(self, x, gap, pressure, closed):
+        n = len(x)
+        self.contact = _Contact(node_a=np.arange(1, n + 1), node_b=np.arange(n + 1, 2 * n + 1),
+                                position=np.stack([x, np.zeros(n)], axis=1), gap=np.asarray(gap, float),
+                                interface=np.ones(n, dtype=int))
+        step = _Step({"pressure": np.asarray(pressure, float), "normal_state": np.asarray(closed, int)})
+        self.steps, self.last = [step], step
+
+
+class SingularEdges(unittest.TestCase):
+    """The contact's singular edges (k2d.adapt.singular_end), the curved zones whose spacing
+    --uniform-contact makes uniform (curved_contact_zones, contact_spacing)."""
+
+    @staticmethod
+    def mid_pressures(edges, p):
+        """The mean of p over each tributary zone [edges[i], edges[i+1]] (a pair's pressure F/A),
+        by a 2000-point midpoint rule."""
+        out = []
+        for a, b in zip(edges, edges[1:]):
+            t = a + (b - a) * (np.arange(2000) + 0.5) / 2000
+            out.append(float(np.mean(p(t))))
+        return np.array(out)
+
+    def test_punch_edge_singular_hertz_axis_not(self):
+        edges = np.linspace(0.0, 1.0, 11)
+        mid = 0.5 * (edges[1:] + edges[:-1])
+        kc = np.arange(10)
+        # a flat punch's half face, p ~ (1 - x^2)^-1/2 (Sadowsky): the outer end is singular,
+        # the axis end (the smallest pressure) is not
+        punch = self.mid_pressures(edges, lambda x: 1.0 / np.sqrt(np.maximum(1.0 - x * x, 1e-300)))
+        self.assertTrue(ad.singular_end(punch, mid, kc, -1))
+        self.assertFalse(ad.singular_end(punch, mid, kc, 0))
+        # Hertz's half zone, p ~ (1 - x^2)^1/2: neither end -- the axis pair has the largest
+        # pressure, above the mean (the old rule's only test, which took it for singular), also
+        # with 1 % of noise on it
+        hertz = self.mid_pressures(edges, lambda x: np.sqrt(np.maximum(1.0 - x * x, 0.0)))
+        self.assertGreater(hertz[0], np.mean(hertz))
+        for noise in (1.0, 1.01):
+            h = hertz.copy()
+            h[0] *= noise
+            self.assertFalse(ad.singular_end(h, mid, kc, 0))
+            self.assertFalse(ad.singular_end(h, mid, kc, -1))
+        # a punch graded towards its edge: still singular
+        graded = 1.0 - (1.0 - np.linspace(0.0, 1.0, 11)) ** 2
+        self.assertTrue(ad.singular_end(self.mid_pressures(graded, lambda x: 1.0 / np.sqrt(
+            np.maximum(1.0 - x * x, 1e-300))), 0.5 * (graded[1:] + graded[:-1]), kc, -1))
+        # Hertz's axis on a coarse contact mesh, where the ellipse itself falls by more than
+        # SINGULAR_RISE from the axis pair to the next: the slope falls towards the axis
+        coarse = np.linspace(0.0, 1.0, 4)
+        hc = self.mid_pressures(coarse, lambda x: np.sqrt(np.maximum(1.0 - x * x, 0.0)))
+        self.assertGreater(hc[0], ad.SINGULAR_RISE * hc[1])
+        self.assertFalse(ad.singular_end(hc, 0.5 * (coarse[1:] + coarse[:-1]), np.arange(3), 0))
+
+    def test_curved_zone_uniform_spacing(self):
+        # a cylinder's chords on a graded contact mesh: the zone's gaps are x^2 / (2R), not
+        # affine in x, so the zone is curved and every node of it takes the smallest size
+        R, a = 15.0, 0.6
+        x = np.concatenate([np.linspace(0.0, 0.3, 7), np.linspace(0.35, 2.0, 12)])
+        closed = (x <= a).astype(int)
+        p = np.where(closed > 0, np.sqrt(np.maximum(1 - (x / a) ** 2, 0.0)) + 0.01, 0.0)
+        r = _Result(x, x * x / (2 * R), p, closed)
+        zones = ad.curved_contact_zones(r)
+        self.assertEqual(len(zones), 1)
+        pairs = zones[0][1]
+        # the closed pairs and a margin beyond the zone's end, not the far pairs
+        xz = x[pairs]
+        self.assertTrue(set(np.where(closed > 0)[0]) <= set(pairs.tolist()))
+        self.assertGreater(xz.max(), a)
+        self.assertLess(xz.max(), a * (1 + ad.CONTACT_MARGIN) + 0.16)
+        nodal = np.concatenate([0.05 + x, 0.07 + x])       # graded: small at the axis
+        out, changed = ad.contact_spacing(r, nodal)
+        zone_nodes = np.concatenate([pairs, pairs + len(x)])
+        np.testing.assert_array_equal(out[zone_nodes], np.full(len(zone_nodes), 0.05))
+        self.assertEqual(changed, len(zone_nodes) - 1)
+        rest = np.setdiff1d(np.arange(2 * len(x)), zone_nodes)
+        self.assertTrue(len(rest))
+        np.testing.assert_array_equal(out[rest], nodal[rest])
+        # a flat surface (gaps 0 or a tilt) has no curved zone, nor has a zone ended by a
+        # singular edge
+        for gap in (np.zeros(len(x)), 0.01 * x):
+            self.assertEqual(ad.curved_contact_zones(_Result(x, gap, p, closed)), [])
+        punch = np.where(closed > 0, 1.0 / np.sqrt(np.maximum(1 - (x / (1.001 * a)) ** 2, 1e-12)), 0.0)
+        self.assertEqual(ad.curved_contact_zones(_Result(x, x * x / (2 * R), punch, closed)), [])
+
+
+class KeyOutputConvergence(unittest.TestCase):
+    """A key output whose successive differences do not decrease (observed order <= 0) is flagged
+    "not converging (singular point?)" in the table and the terminal."""
+
+    def test_note(self):
+        hs = (1.0, 0.5, 0.25)
+        self.assertEqual(ad.convergence_note([2.0 + h * h for h in hs]), "")
+        # a stress at a singular point: sigma ~ h^-1/2 grows, its differences grow
+        self.assertEqual(ad.convergence_note([h ** -0.5 for h in hs]), ad.NOT_CONVERGING)
+        # differences that stay equal: observed order 0
+        self.assertEqual(ad.convergence_note([1.0, 1.5, 2.0]), ad.NOT_CONVERGING)
+        # a change below SIGNIFICANT_CHANGE of the value is no singular point's growth
+        self.assertEqual(ad.convergence_note([1.0, 1.002, 1.004]), "")
+        self.assertEqual(ad.convergence_note([1.0, 1.02, 1.04]), ad.NOT_CONVERGING)
+        # oscillating: not this flag's (Richardson's table says "oscillating")
+        self.assertEqual(ad.convergence_note([1.0, 1.2, 0.8]), "")
+        self.assertEqual(ad.convergence_note([1.0, 1.2, 1.1]), "")
+        self.assertEqual(ad.convergence_note([3.0, 3.0, 3.0]), "")
+        self.assertEqual(ad.convergence_note([1.0, 2.0]), "")
+        self.assertEqual(ad.convergence_note([1.0, float("nan"), 2.0]), "")
+        # unequal steps (adaptive meshes): f = 5 + 100 / N converges, though its second
+        # difference (a step of 4.5 in N) exceeds its first (a step of 1.1)
+        N = [1000.0, 1100.0, 5000.0]
+        f = [5.0 + 100.0 / n for n in N]
+        self.assertGreater(abs(f[2] - f[1]), abs(f[1] - f[0]))
+        self.assertEqual(ad.convergence_note(f, N), "")
+        self.assertEqual(ad.convergence_note(f), ad.NOT_CONVERGING)     # taken as equal steps
+        # a stress growing like N^(1/4) is flagged on unequal steps too
+        self.assertEqual(ad.convergence_note([n ** 0.25 for n in N], N), ad.NOT_CONVERGING)
+        # Richardson's note says it as well
+        self.assertIn(ad.NOT_CONVERGING, ad.richardson(1.0, 1.1, 1.3)["note"])
+
+    def rows(self):
+        N = [1000, 4000, 16000, 64000]
+        return [{"method": "adaptive", "step": k, "elements": n // 2, "dofs": n, "estimated_error": 0.1 / (k + 1),
+                 "source": "program", "cpu_solve": 0.1, "cpu_mesh": 0.1, "peak_pressure": 221.3 + 50.0 / n,
+                 "width": 1.15, "approach": 0.02 - 1.0 / n, "von_mises": 3.0 * n ** 0.25,
+                 "slip_share": float("nan"), "law_drift": 0.0, "scheme": "", "exit": 0} for k, n in enumerate(N)]
+
+    def test_table_and_terminal(self):
+        rows = ad.cumulate(self.rows())
+        flags = ad.convergence_flags(rows)
+        self.assertEqual([f[0] for f in flags["adaptive"]], ["largest von Mises stress"])
+        self.assertEqual(rows[0]["not_converging"], "")
+        self.assertEqual(rows[1]["not_converging"], "")
+        for r in rows[2:]:
+            self.assertEqual(r["not_converging"], "largest von Mises stress: " + ad.NOT_CONVERGING)
+        work = work_dir("k2d_flags_")
+        md = ad.write_tables(rows, {}, work, "m", "m.dat", 0.01, 100000)
+        with open(md) as f:
+            text = f.read()
+        self.assertIn("Key outputs that do not converge", text)
+        self.assertIn("largest von Mises stress: **%s**" % ad.NOT_CONVERGING, text)
+        self.assertNotIn("peak pressure: **", text)
+        csv_rows = read_rows(os.path.join(work, "m_adapt.csv"))
+        self.assertEqual(len(csv_rows), 4)
+        self.assertIn(ad.NOT_CONVERGING, csv_rows[3]["not_converging"])
+        self.assertEqual(csv_rows[1]["not_converging"], "")
+        lines = []
+        ad.print_flags(rows, log=lines.append)
+        self.assertEqual(len(lines), 1)
+        self.assertIn("largest von Mises stress", lines[0])
+        self.assertIn(ad.NOT_CONVERGING, lines[0])
+        # a converging von Mises stress: no section, no line
+        rows = self.rows()
+        for r in rows:
+            r["von_mises"] = 4.0 - 100.0 / r["dofs"]
+        ad.cumulate(rows)
+        md = ad.write_tables(rows, {}, work, "c", "c.dat", 0.01, 100000)
+        with open(md) as f:
+            self.assertNotIn("do not converge", f.read())
+        lines = []
+        ad.print_flags(rows, log=lines.append)
+        self.assertEqual(lines, [])
+        shutil.rmtree(work, ignore_errors=True)
 
 
 @unittest.skipIf(shutil.which("gmsh") is None, "gmsh not installed")

@@ -482,13 +482,92 @@ def richardson(f1, f2, f3, r=2.0, fs=1.25):
     if d1 * d2 <= 0.0 or abs(d2) >= abs(d1):
         out["error"] = 3.0 * abs(d2) / (r - 1.0)
         out["gci"] = out["error"] / abs(f3) if f3 != 0 else float("nan")
-        out["note"] = "not in the asymptotic range (%s)" % ("oscillating" if d1 * d2 <= 0.0 else "not converging")
+        out["note"] = "not in the asymptotic range (%s)" % ("oscillating" if d1 * d2 <= 0.0 else NOT_CONVERGING)
         return out
     p = math.log(d1 / d2) / math.log(r)
     ext = f3 + (f3 - f2) / (r ** p - 1.0)
     out.update(order=p, extrapolated=ext, error=abs(ext - f3),
                gci=fs * abs((f3 - f2) / f3) / (r ** p - 1.0) if f3 != 0 else float("nan"))
     return out
+
+
+NOT_CONVERGING = "not converging (singular point?)"
+
+
+# a key output that changed by less than this share of its value over the last step is not flagged
+# as not converging (convergence_note)
+SIGNIFICANT_CHANGE = 0.01
+
+
+def convergence_note(values, dofs=None, rel=1e-9, significant=SIGNIFICANT_CHANGE):
+    """Whether the last three values of a key output over a sequence of meshes converge:
+    NOT_CONVERGING when they move one way with successive differences that do not decrease --
+    the observed order log(d1 / d2) / log(r) is <= 0, as for a stress at a singular point (the
+    largest von Mises stress at a punch's edge grows without limit under refinement) -- else "".
+    A sequence that changes direction is not flagged here: the contact width moves in steps of
+    the pair spacing and the peak pressure scatters by about 0.5 % on remeshed meshes (Richardson's
+    table calls such a sequence "oscillating").  With `dofs` (a sequence of unequal steps,
+    adaptive meshes) each difference is taken per unit of log(DOFs), so a small step is not
+    mistaken for convergence; without, the meshes are equal steps (h, h/2, h/4).  A last change
+    below `significant` times the last value is not flagged: a singular value changes by tens of
+    per cent per step (the punch's edge pressure doubled), while the outputs of remeshed meshes
+    that do converge wander by a few tenths of a per cent (Hertz's approach changed by 0.15 % then
+    0.12 % over its last two adaptive steps, the second one short).  Values unchanged to `rel`, or
+    fewer than three finite values: ""."""
+    if len(values) < 3:
+        return ""
+    f = [float(v) for v in values[-3:]]
+    if any(not math.isfinite(v) for v in f):
+        return ""
+    d1, d2 = f[1] - f[0], f[2] - f[1]
+    scale = max(abs(v) for v in f)
+    if abs(d1) <= rel * scale and abs(d2) <= rel * scale:
+        return ""
+    if abs(d2) < significant * abs(f[2]):
+        return ""
+    r1 = r2 = 1.0
+    if dofs is not None:
+        n = [float(v) for v in dofs[-3:]]
+        if min(n) <= 0.0 or n[1] <= n[0] or n[2] <= n[1]:
+            return ""            # no refinement between the meshes: nothing to say about the rate
+        r1, r2 = math.log(n[1] / n[0]), math.log(n[2] / n[1])
+    if abs(d2) / r2 < abs(d1) / r1:
+        return ""
+    return NOT_CONVERGING if d1 * d2 > 0.0 else ""
+
+
+def convergence_flags(rows):
+    """Mark the key outputs that do not converge: every row gets "not_converging", the outputs
+    (their labels, "; "-separated) whose values on this mesh and the two meshes before it of the
+    same method do not converge (convergence_note; a remeshed sequence per unit of log(DOFs), a
+    card deck's splitting as equal steps).  Returns {method: [(label, note, last three values)]}
+    for the last mesh of each method."""
+    last = {}
+    by_method = {}
+    for r in rows:
+        by_method.setdefault(r["method"], []).append(r)
+    for method, rs in by_method.items():
+        equal = all(r.get("split") for r in rs)
+        for k, r in enumerate(rs):
+            seq = rs[max(0, k - 2):k + 1]
+            dofs = None if equal else [x["dofs"] for x in seq]
+            flagged = []
+            for key, label in OUTPUTS:
+                note = convergence_note([x[key] for x in seq], dofs)
+                if note:
+                    flagged.append((label, note, [x[key] for x in seq]))
+            r["not_converging"] = "; ".join("%s: %s" % (lab, note) for lab, note, _v in flagged)
+            if k == len(rs) - 1:
+                last[method] = flagged
+    return last
+
+
+def print_flags(rows, log=print):
+    """The terminal's word on the key outputs that do not converge (convergence_flags)."""
+    for method, flagged in convergence_flags(rows).items():
+        for label, note, vals in flagged:
+            log("adapt: %s, %s: %s (the last three meshes: %s)"
+                % (method, label, note, ", ".join("%.6g" % v for v in vals)))
 
 
 # -------------------------------------------------------------------------------- running
@@ -587,11 +666,46 @@ def new_sizes(eta, h, p, target, max_elements=None, shrink=(0.2, 2.0), safety=0.
     return s * h, n_new
 
 
+# a contact zone's end is a singular edge only where its pair's pressure is this much above its
+# neighbour's (singular_end)
+SINGULAR_RISE = 1.1
+
+
+def singular_end(pr, s, kc, end, rise=SINGULAR_RISE):
+    """Whether the end `end` (0: the first, -1: the last) of a contact zone is a flat-punch-type
+    singular edge: its closed pairs kc in the order of their positions s along the interface
+    (s indexed by pair), their pressures pr.  The outermost pair's pressure at least the mean of
+    the closed pairs' and at least `rise` times its inner neighbour's, and, with three or more
+    closed pairs, the pressure rising towards the end ever more steeply (the slope between the
+    two outermost pairs above the slope between the next two), as p ~ r^-1/2 does.  Where
+    p ~ r^-1/2 the two outermost pairs' tributary means differ by a factor of about 2.7 on a
+    uniform spacing (more than 1.4 on any grading).  The end of a half model on its symmetry
+    axis, where the pressure has a flat maximum (Hertz's axis), passes neither test: its pair
+    differs from its neighbour by the discretization's scatter, about 0.5 %, on a fine contact
+    mesh, and where the spacing is coarse enough for the ellipse's own fall to exceed `rise`,
+    the slope falls towards the axis.  Before these tests that maximum was taken for a singular
+    edge and sized at the singular rate."""
+    if len(kc) < 2:
+        return False
+    mean = float(np.mean(pr[kc]))
+    j, inner = (kc[0], kc[1]) if end == 0 else (kc[-1], kc[-2])
+    if not (mean > 0.0 and pr[j] >= mean and pr[j] >= rise * pr[inner]):
+        return False
+    if len(kc) < 3:
+        return True
+    outer2 = kc[2] if end == 0 else kc[-3]
+    d01, d12 = abs(s[j] - s[inner]), abs(s[inner] - s[outer2])
+    if d01 <= 0.0 or d12 <= 0.0:
+        return True
+    return (pr[j] - pr[inner]) / d01 > (pr[inner] - pr[outer2]) / d12
+
+
 def singular_rates(result, lam=0.5):
     """The exponent lambda of the singular points of the solution the contact shows, per element
-    (0 elsewhere): an interface whose contact zone ends at its largest pressures -- the pressure
-    of the outermost closed pair at least the mean of the closed pairs', a flat punch's edge where
-    p ~ r^-1/2 and u ~ r^1/2 (Johnson 1985, sec. 2.8), not Hertz's edge where p falls to zero --
+    (0 elsewhere): an interface whose contact zone ends at its largest pressures, rising
+    steeply towards the end (singular_end) -- a flat punch's edge where p ~ r^-1/2 and
+    u ~ r^1/2 (Johnson 1985, sec. 2.8), not Hertz's edge where p falls to zero nor the symmetry
+    axis of a half model, where p has a flat maximum --
     gives lambda = 1/2 to the elements at the nodes of that pair (node a, and node b or the nodes
     of surface B under it).  Re-entrant corners of the bodies are not detected."""
     m = result.mesh
@@ -609,12 +723,10 @@ def singular_rates(result, lam=0.5):
         axis = 0 if np.ptp(pos[k, 0]) >= np.ptp(pos[k, 1]) else 1
         k = k[np.argsort(pos[k, axis])]
         kc = k[closed[k]]
-        if len(kc) < 2:
-            continue
-        mean = float(np.mean(pr[kc]))
-        for j in (kc[0], kc[-1]):
-            if mean <= 0.0 or pr[j] < mean:
+        for end in (0, -1):
+            if not singular_end(pr, pos[:, axis], kc, end):
                 continue
+            j = kc[end]
             nodes.add(int(c.node_a[j]) - 1)
             if "master_nodes" in c:
                 nodes.update(int(v) - 1 for v, w in zip(c.master_nodes[j], c.master_weights[j])
@@ -735,11 +847,103 @@ def interface_sizes(result, nodal, finer=FINER_A):
     return nodal
 
 
-def write_size_view(path, result, hnew, msh=None):
+# the uniform spacing along a curved contact covers the contact zone and this share of its
+# extent beyond each end (plus one pair spacing): the zone's edge moves from mesh to mesh
+CONTACT_MARGIN = 0.25
+
+
+def _pair_b_nodes(c, j):
+    """The nodes (0-based) of surface B that pair j is coupled with (master_nodes, or node b)."""
+    if "master_nodes" in c:
+        b = [int(v) - 1 for v, w in zip(c.master_nodes[j], c.master_weights[j]) if v > 0 and w != 0]
+        if b:
+            return b
+    return [int(c.node_b[j]) - 1]
+
+
+def curved_contact_zones(result, margin=CONTACT_MARGIN, bend=0.05):
+    """The contact zones whose surface spacing is made uniform (contact_spacing): per interface
+    whose closed pairs' initial gaps g0 are not an affine function of the position along the
+    interface -- a curved surface, whose chords add to the mortar gap an offset that depends on
+    the local spacing (h^2 / (6 R) for a Q4 chord h on a radius R) -- and whose zone is not
+    ended by a flat-punch-type singular edge (the outermost closed pair's pressure at least the
+    mean of the closed pairs', singular_rates: those edges want grading).  "Not affine": the
+    largest residual of the straight line fitted to g0 over the closed pairs is more than `bend`
+    times g0's range, a range above 1e-9 of the zone's extent.  Returns [(interface, the pairs
+    within the zone extended by `margin` times its extent plus one pair spacing beyond each end)]."""
+    c = result.contact
+    if c is None or not c.npair or "gap" not in c:
+        return []
+    step = design_step(result)
+    pr = step.contact("pressure")
+    closed = step.contact("normal_state") > 0
+    pos = c.position
+    gap = np.asarray(c.gap, dtype=float)
+    out = []
+    for itf in np.unique(c.interface):
+        k = np.where(c.interface == itf)[0]
+        axis = 0 if np.ptp(pos[k, 0]) >= np.ptp(pos[k, 1]) else 1
+        k = k[np.argsort(pos[k, axis])]
+        kc = k[closed[k]]
+        if len(kc) < 1:
+            continue
+        if any(singular_end(pr, pos[:, axis], kc, end) for end in (0, -1)):
+            continue                        # a singular edge: keep the grading
+        s = pos[k, axis]
+        lo, hi = float(pos[kc[0], axis]), float(pos[kc[-1], axis])
+        i0, i1 = int(np.searchsorted(s, lo)), int(np.searchsorted(s, hi, side="right")) - 1
+        spacing = max(s[min(i0 + 1, len(s) - 1)] - s[i0], s[i1] - s[max(i1 - 1, 0)], 0.0)
+        ext = margin * (hi - lo) + spacing
+        # the curvature, from the gaps of the closed pairs and their neighbours on both sides
+        j0, j1 = max(i0 - 1, 0), min(i1 + 1, len(k) - 1)
+        sg, gg = s[j0:j1 + 1], gap[k[j0:j1 + 1]]
+        if len(sg) < 3:
+            continue
+        rng = float(np.ptp(gg))
+        if rng <= 1e-9 * max(float(np.ptp(sg)), 1e-300):
+            continue
+        res = gg - np.polyval(np.polyfit(sg, gg, 1), sg)
+        if np.max(np.abs(res)) <= bend * rng:
+            continue
+        out.append((int(itf), k[(s >= lo - ext) & (s <= hi + ext)]))
+    return out
+
+
+def contact_spacing(result, nodal, margin=CONTACT_MARGIN):
+    """The nodal sizes `nodal` (npoin) with a uniform spacing along every curved contact zone
+    (curved_contact_zones): the nodes of both surfaces of the zone's pairs (node a and the nodes
+    of surface B under it) all take the smallest size any of them asks.  On a graded contact
+    mesh the chords' offset h^2 / (6 R) of the mortar gap varies along the zone, on a uniform
+    one it is a rigid shift that changes no pressure; this was the suspected source of the
+    peak pressure's +-0.5 % noise on Hertz's adaptive meshes.  Measured (docs/adaptivity.md,
+    "The peak pressure's scatter on Hertz's adaptive meshes"): it makes the offset uniform to
+    0.04 % of the zone's edge gap and the pressure profile smoother, but the peak pressure
+    scatters as much (+-0.6 %), so it is not the route's default (tools/adapt.py
+    --uniform-contact).  Returns (sizes, nodes changed)."""
+    nodal = np.array(nodal, dtype=float)
+    changed = 0
+    c = result.contact
+    for _itf, pairs in curved_contact_zones(result, margin):
+        nodes = set()
+        for j in pairs:
+            nodes.add(int(c.node_a[j]) - 1)
+            nodes.update(_pair_b_nodes(c, j))
+        sel = np.array(sorted(n for n in nodes if 0 <= n < len(nodal) and np.isfinite(nodal[n])), dtype=int)
+        if not len(sel):
+            continue
+        h = float(np.min(nodal[sel]))
+        changed += int(np.count_nonzero(nodal[sel] > h))
+        nodal[sel] = h
+    return nodal, changed
+
+
+def write_size_view(path, result, hnew, msh=None, uniform_contact=False):
     """A gmsh post-processing view (.pos) of the sizes at the corners of the current mesh: the
     smallest of the sizes wanted by the elements around each node, with ghost cells beyond the
-    boundary (k2d.adapt_mesh.boundary_ghosts).  With `msh`, the .msh the result was computed
-    on, one view per body (the cells connected through shared nodes): the ghosts of one body
+    boundary (k2d.adapt_mesh.boundary_ghosts); with `uniform_contact` one size along each curved
+    contact zone (contact_spacing), and surface A the finer side (interface_sizes).  With `msh`,
+    the .msh the result was computed on, one view per body (the cells connected through shared
+    nodes): the ghosts of one body
     reach into the gap of a contact, and with one view of everything gmsh took either body's
     size there (a Q8 Hertz model's cylinder took the coarser sizes of the half-plane and stopped
     with E-SEGMENT-SIDE); gmsh_mesh meshes each body's inside from its own view and the curves
@@ -753,6 +957,8 @@ def write_size_view(path, result, hnew, msh=None):
     for k in range(4):
         valid = (nn != 3) | (k < 3)
         np.minimum.at(nodal, m.connectivity[valid, k] - 1, hnew[valid])
+    if uniform_contact:
+        nodal = contact_spacing(result, nodal)[0]
     nodal = interface_sizes(result, nodal)
     cells = [m.connectivity[e, :3 if nn[e] == 3 else 4] - 1 for e in range(len(nn))]
     bodies = am.msh_bodies(msh) if msh else None
@@ -862,11 +1068,12 @@ MAX_GROWTH = 4.0      # elements of an adaptive mesh over the last one's, at mos
 
 
 def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8, log=print,
-                    max_growth=MAX_GROWTH, singular=True):
+                    max_growth=MAX_GROWTH, singular=True, uniform_contact=False):
     """Remesh the .geo of a MESH deck until the estimated error is below `target` or the next
     mesh would exceed `max_dofs`: adaptively from the indicators (a size field; each mesh at most
     about `max_growth` times the elements of the last, None: no limit; with `singular` the
-    contact's singular edges refined at their own rate, singular_rates), or with uniform=True by
+    contact's singular edges refined at their own rate, singular_rates; with `uniform_contact` a
+    uniform spacing along curved contact zones, contact_spacing), or with uniform=True by
     halving the .geo's sizes at each step.  Returns the rows of the table."""
     kind, msh, geo = deck_kind(deck)
     if kind != "mesh" or geo is None:
@@ -899,7 +1106,7 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
             if dofs <= limit:
                 break
             hnew *= math.sqrt(dofs / want)
-            restrict = write_size_view(pos, r, hnew, msh=r_msh)
+            restrict = write_size_view(pos, r, hnew, msh=r_msh, uniform_contact=uniform_contact)
             cpu_mesh += gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos, restrict=restrict)
         if max_dofs and 2 * msh_nodes(base + ".msh") > max_dofs:
             rows[-1]["stop"] = "budget"
@@ -939,7 +1146,7 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
         hnew, row["traction_limited"] = limit_by_tractions(r, hnew, h, target)
         pos = base + "_size.pos"
         r_msh = base + ".msh"
-        restrict = write_size_view(pos, r, hnew, msh=r_msh)
+        restrict = write_size_view(pos, r, hnew, msh=r_msh, uniform_contact=uniform_contact)
         row["cpu_mesh"] += time.process_time() - t0
     return rows
 
@@ -979,6 +1186,7 @@ def refine_card_deck(deck, target, max_dofs, out, exe, min_levels=3, max_levels=
         eta, est, source = indicator(r, mats)
         row = _row(k, r, est, source, cpu, t_refine + time.process_time() - t0, rc)
         row["method"] = "uniform"
+        row["split"] = True         # every element split into four: equal steps h, h/2, h/4
         row["h5"] = base + ".h5"
         rows.append(row)
         log("  level %d: %d DOFs, estimated error %.4g (%s), CPU %.2f s" % (k, row["dofs"], est, source, cpu))
@@ -1002,7 +1210,7 @@ def richardson_table(rows):
 COLUMNS = ["method", "step", "elements", "dofs", "estimated_error", "source", "cpu_solve", "cpu_mesh",
            "cpu_cumulative", "peak_pressure", "width", "approach", "von_mises", "slip_share", "scheme",
            "law_drift", "residual", "traction_limited", "singular_elements", "max_angle", "quads_over_limit",
-           "exit"]
+           "exit", "not_converging"]
 
 
 def cumulate(rows):
@@ -1018,6 +1226,7 @@ def cumulate(rows):
 def write_tables(rows, rich, out, name, deck, target, max_dofs):
     """<name>_adapt.csv and <name>_adapt.md in `out`; returns the Markdown path."""
     from .tables import markdown_table, write_dict_csv
+    flags = convergence_flags(rows)          # also each row's not_converging column
     csv_path = os.path.join(out, name + "_adapt.csv")
     write_dict_csv(csv_path, COLUMNS, rows)
     final = [r for r in rows if r["method"] == rows[0]["method"]][-1]
@@ -1038,6 +1247,18 @@ def write_tables(rows, rich, out, name, deck, target, max_dofs):
              r["cpu_mesh"], r["cpu_cumulative"], r["peak_pressure"], r["width"], r["approach"], r["von_mises"],
              r["slip_share"], r["law_drift"]] for r in rows]
     md.append(markdown_table("Convergence", head, body, fmt))
+    if any(flags.values()):
+        md += ["### Key outputs that do not converge", "",
+               "Over the last three meshes of the method, the successive differences of these outputs do not "
+               "decrease (per unit of log(DOFs) on remeshed sequences; the observed order is <= 0): a value at a "
+               "singular point (a stress at a punch's edge or a re-entrant corner grows without limit under "
+               "refinement) or one that the refinement does not settle. Its last value is no converged result and "
+               "no extrapolation is made of it.", ""]
+        for method, fl in flags.items():
+            for label, note, vals in fl:
+                md.append("* %s, %s: **%s**; the last three meshes: %s" % (
+                    method, label, note, ", ".join("%.6g" % v for v in vals)))
+        md.append("")
     if rich:
         rb = []
         for k, label in OUTPUTS:
