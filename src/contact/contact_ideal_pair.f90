@@ -18,7 +18,8 @@
 !! element areas), and eps_T = eps_n / sqrt(FACTOR); the system stays symmetric
 !! positive definite.  Multipliers that cannot end the increment are updated
 !! before the bodies balance their forces to 1e-10, once the out-of-balance
-!! force is small against the update (inexact Uzawa, early_update).  Within one Uzawa iterate the slip bound is mu lam_n
+!! force is small against the update (inexact Uzawa, early_update).  Within
+!! one Uzawa iterate the slip bound is mu lam_n
 !! (Tresca's law, linear modes) until the penetrations and stick slips are
 !! within tolerance; then it is mu F_n of the current normal force (Coulomb's
 !! law, the coupling corrected by the out-of-balance force), so that converged

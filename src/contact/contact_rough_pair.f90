@@ -417,9 +417,8 @@ contains
          end if
 
          ! Newton stiffness for the next solve of a RETURN update
-         if (returning .and. md%closed .and. .not. held_now) then
-            md%kn = newton_normal_stiffness(ifc, md, pr%area, s%fn, fnprev, fpred, fn, u, dun, regularise)
-         end if
+         if (returning .and. md%closed .and. .not. held_now) md%kn = &
+            newton_normal_stiffness(ifc, md, pr%area, s%fn, fnprev, fpred, fn, u, dun, regularise)
 
          ! 3. tangential (SPEC §4.3 item 3 and 4)
          if (md%closed .and. ifc%friction /= FRICTION_NONE) then
@@ -498,8 +497,8 @@ contains
          k = fn/(u - md%uthr)
       else if (ktan > 0.0_dp .and. fn > 1.0e-12_dp*fref) then
          k = max(ktan, 1.0e-3_dp*fn/max(u - md%uthr, tiny(1.0_dp)))
-      else if ((fpred <= 0.5_dp*fn .or. .not. regularise) .and. md%on_unloading .and. ifc%m2 < 0.5_dp &
-               .and. fn > 0.0_dp .and. &
+      else if ((fpred <= 0.5_dp*fn .or. .not. regularise) .and. md%on_unloading .and. &
+               ifc%m2 < 0.5_dp .and. fn > 0.0_dp .and. &
                u - md%uthr > 1.0e-6_dp*(md%ua - md%uthr)) then
          ! a steep branch (m2 < 0.5): below 1e-12 of its force scale but further than 1e-6 of
          ! its travel above the zero-force point, so not at rest there: the chord to the

@@ -190,8 +190,8 @@ contains
       this%n = size(s, 1)
       nd = size(ppos, 1)
       np = size(ppos, 2)
-      allocate (this%qoff(np), this%qrank(np), this%q(nd, nd, np), this%kscale(np), this%d(nd, nd), &
-                this%qm(np), this%poff(np))
+      allocate (this%qoff(np), this%qrank(np), this%q(nd, nd, np), this%kscale(np), &
+                this%d(nd, nd), this%qm(np), this%poff(np))
       call pair_bases(ppos, kref, this%q, this%qrank, this%qm, this%kscale, info)
       if (info /= 0) return
       this%r = 0

@@ -12,7 +12,8 @@ module lapack_interfaces
    use kinds, only: dp
    implicit none
    private
-   public :: dgemm, dgemv, dsymv, dtrsv, dtrsm, dsyrk, dgetrf, dgetrs, dpotrf, dpotri, dpotrs, dtrtrs, dsyev
+   public :: dgemm, dgemv, dsymv, dtrsv, dtrsm, dsyrk, dgetrf, dgetrs, dpotrf, dpotri, dpotrs, &
+         dtrtrs, dsyev
 
    interface
       subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)

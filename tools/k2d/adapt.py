@@ -1232,8 +1232,9 @@ def write_tables(rows, rich, out, name, deck, target, max_dofs):
     final = [r for r in rows if r["method"] == rows[0]["method"]][-1]
     reached = final["estimated_error"] <= target
     md = ["# Refinement of %s to an estimated error of %g" % (os.path.basename(deck), target), "",
-          "Deck `%s`; budget %d DOFs; the estimate is the relative energy-norm error of the last increment "
-          "(source: %s; docs/adaptivity.md)." % (os.path.basename(deck), max_dofs, final["source"]), "",
+          "Deck `%s`; budget %d DOFs; the estimate and the key outputs are those of the increment of the "
+          "largest strain energy (the last one unless the history unloads; source: %s; "
+          "docs/adaptivity.md)." % (os.path.basename(deck), max_dofs, final["source"]), "",
           ("**Reached**: %.4g <= %g with %d DOFs (%s, step %s)." if reached else
            "**Not reached**: %.4g > %g with %d DOFs (%s, step %s): the budget or the step limit ended it.")
           % (final["estimated_error"], target, final["dofs"], final["method"], final["step"]), ""]
