@@ -410,13 +410,7 @@ contains
       kscale = 0.0_dp
       info = 0
       do j = 1, size(ppos, 2)
-         m = 0
-         do k = 1, nd
-            if (ppos(k, j) > 0) then
-               m = m + 1
-               idx(m) = k
-            end if
-         end do
+         call valid_dofs(ppos(:, j), idx, m)
          qm(j) = m
          if (m == 0) cycle
          a(1:m, 1:m) = kref(idx(1:m), idx(1:m), j)
@@ -459,25 +453,18 @@ contains
       integer, intent(in) :: ppos(:, :)
       real(dp), intent(in) :: kc(:, :, :)
       logical, intent(out) :: done
-      integer :: j, k, l, a, b, nd, rk, m, ia, ib
+      integer :: j, k, l, a, b, rk, m, ia, ib
       integer :: iv(size(ppos, 1))
       real(dp) :: recon
       logical :: symmetric
       done = .false.
       if (.not. this%ready) return
-      nd = size(ppos, 1)
       symmetric = .true.
       this%stiffness = 0.0_dp
       do j = 1, size(ppos, 2)
          rk = this%qrank(j)
-         ! the pair's valid dofs, in order (a node-to-node pair uses 4 of nd)
-         m = 0
-         do a = 1, nd
-            if (ppos(a, j) > 0) then
-               m = m + 1
-               iv(m) = a
-            end if
-         end do
+         ! the pair's valid dofs, in order (a node-to-node pair uses 4 of its slots)
+         call valid_dofs(ppos(:, j), iv, m)
          ! D_j = Q_j^T kc_j Q_j on the valid dofs
          do l = 1, rk
             do k = 1, rk
