@@ -91,6 +91,23 @@ contains
       f = 1.0e-10_dp*max(st%fref, abs(st%lam_n(j)))
    end function round_off_force
 
+   !> Whether ideal pair j entered the increment penetrated beyond the tolerance
+   !! and has no normal multiplier yet: an interference (a shrink fit's pairs,
+   !! whose overlap the first increment presses out) before the first update of
+   !! the multipliers.  Tresca's bound mu lam_n of such a pair is zero, although
+   !! its normal force is the largest of the run: the first iterate slipped every
+   !! pair of a fit and the regularising springs alone held a hub against its
+   !! push (it ran hundreds of millimetres down the shaft and never came back).
+   !! Its bound is Coulomb's mu F_n of the trial normal force instead, until the
+   !! multipliers hold the fit's force.  A converged increment leaves every closed
+   !! pair within tol_pen, and a pair closing from a gap starts with u_n <= 0:
+   !! no other pair meets the test.
+   pure logical function pressed_without_force(st, j) result(pressed)
+      type(contact_state_t), intent(in) :: st
+      integer, intent(in) :: j
+      pressed = st%lam_n(j) <= 0.0_dp .and. st%s(j)%un > st%tol_pen
+   end function pressed_without_force
+
    !> Forces and modes of an ideal pair for its current multipliers:
    !! F_n = lam_n + eps_n u_n when closed (0 open), F_T = proj(lam_T + eps_T du_T)
    !! onto [-g, g] with the slip bound g = mu lam_n of the same multipliers
@@ -147,7 +164,8 @@ contains
             ! per increment on a frictional ring of segment pairs).  The matrix
             ! keeps K_T = 0 (symmetric): the coupling mu dF_n is corrected by
             ! the out-of-balance force of the next solutions.
-            lim = md%mu*max(merge(st%fn(jp), st%lam_n(jp), st%coulomb), 0.0_dp)
+            lim = md%mu*max(merge(st%fn(jp), st%lam_n(jp), st%coulomb .or. &
+                                  pressed_without_force(st, jp)), 0.0_dp)
             trial_t = st%lam_t(jp) + st%eps_t(jp)*st%dut(jp)
             ! the cone is widened by the round-off allowance of the Coulomb check
             ! (1e-10 F_n): with lam_n = 0 (the first iterate of a pair closed

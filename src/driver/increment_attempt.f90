@@ -335,7 +335,7 @@ contains
       logical, allocatable :: changed(:), wasc(:)
       integer :: iter, maxit, nrest
       real(dp) :: fscale, dnorm, rshare
-      logical :: need_matrix, done, again, newton, hold, anchored, shortened
+      logical :: need_matrix, done, again, newton, hold, anchored, shortened, fit_scale
       type(step_start_t) :: start
       allocate (rhs(an%map%neq), ddu(2, m%npoin), rvec(an%springs%nd, an%npair), &
                 rpred(an%springs%nd, an%npair), &
@@ -364,6 +364,7 @@ contains
       anchored = .false.
       rshare = 0.0_dp
       nrest = 0
+      fit_scale = .false.
       call load_increment(an%coup, an%map, an%fcase, an%ucase, an%restrained, dlam, carry, rhs, &
                           att%du)
       fscale = max(maxval([0.0_dp, abs(rhs)]), maxval(abs(fext_new)), 1.0e-300_dp)
@@ -381,11 +382,9 @@ contains
       call an%sys%begin_attempt()
       ddu = att%du       ! first solve: prescribed increments at the restrained dofs
       need_matrix = an%has_contact .or. .not. an%system_current
-      maxit = 1
-      if (an%has_contact) maxit = an%maxrep
+      maxit = merge(an%maxrep, 1, an%has_contact)
       do iter = 1, maxit
-         ! half the solutions spent: the modes' own stiffnesses for the rest (no regularising
-         ! springs)
+         ! half the solutions spent: the modes' own stiffnesses (no regularising springs)
          if (an%has_contact .and. iter == maxit/2 + 1 .and. .not. st%regularise_slip) then
             call drop_regularisation(m%contact, st, need_matrix)
          end if
@@ -395,7 +394,8 @@ contains
          end if
          if (iter == 1) then
             call an%springs%subtract_prescribed(m%contact%pairs, ddu, rhs)
-            call first_force_scale(an, att, rhs, carry, fext_new, slip_reg, fscale, hold)
+            call first_force_scale(an, st, att, rhs, carry, fext_new, slip_reg, fscale, hold, &
+                                   fit_scale)
          end if
          if (newton .and. iter > 1) call keep_start(att, st, rhs, rvec, start)
          ! the solution at (at least) the contact equations' dofs
@@ -414,6 +414,7 @@ contains
          end if
          ! predicted spring forces (the linearisation the solve used) ...
          call an%springs%predicted_forces(m%contact%pairs, rvec, ddu, rpred)
+         if (fit_scale) fscale = max(maxval(abs(rpred)), 1.0e-300_dp)
          dl = merge(0.0_dp, ddu, an%restrained)
          ! (a hold moves by round-off only: its corrections are measured against the
          ! largest displacement increment of the run so far)
@@ -760,13 +761,19 @@ contains
    !! increment's scale (the load, a sum of increments, is zero to round-off of
    !! the run's forces); the second attempt of a singular increment to zero load
    !! against the run's forces (zero_load_scale).
-   subroutine first_force_scale(an, att, rhs, carry, fext_new, slip_reg, fscale, hold)
+   subroutine first_force_scale(an, st, att, rhs, carry, fext_new, slip_reg, fscale, hold, fit)
       type(analysis_t), intent(in) :: an
+      type(contact_state_t), intent(in) :: st
       type(attempt_t), intent(in) :: att
       real(dp), intent(in) :: rhs(:), carry(:), fext_new(:, :)
       logical, intent(in) :: slip_reg              !! the second attempt (regularised slip)
       real(dp), intent(inout) :: fscale
       logical, intent(inout) :: hold
+      !> nothing loaded but an interference of ideal pairs: the scale is the fit's spring
+      !! forces of every solution (attempt_pass), not the penalty's first trial forces
+      !! (presses_interference)
+      logical, intent(out) :: fit
+      fit = fscale <= 1.0e-300_dp .and. presses_interference(st)
       if (fscale <= 1.0e-300_dp .and. an%map%neq > 0) then
          fscale = max(maxval(abs(rhs)), 1.0e-300_dp)
       end if
@@ -794,6 +801,30 @@ contains
       share = 0.0_dp
       if (att%rnorm <= att%rtol - tol) share = 1.0_dp
    end function roundoff_share
+
+   !> Whether the increment starts with an interference of ideal pairs: a closed
+   !! ideal pair penetrated beyond the tolerance without a normal multiplier (a
+   !! shrink fit pressed in its first increment).  Where nothing else loads such
+   !! an increment its only force scale would be the first right-hand side, the
+   !! penalty's trial forces eps_n g of the overlap -- 3e3 times the fit's forces
+   !! on the hub of docs/contact.md ("An interference fit held by friction"):
+   !! balanced to 1e-10 of that, the hub was out of equilibrium by 4.3e-8 of its
+   !! largest force, beyond the audit's 1e-8.  Such an increment is measured
+   !! against the largest spring force of its last solution instead (the fit's
+   !! forces, attempt_pass).
+   pure logical function presses_interference(st) result(pressed)
+      type(contact_state_t), intent(in) :: st
+      integer :: k, j
+      pressed = .false.
+      if (.not. st%has_ideal .or. .not. allocated(st%ideal)) return
+      do k = 1, size(st%ideal)
+         j = st%ideal(k)
+         if (st%s(j)%closed .and. st%s(j)%un > st%tol_pen .and. st%lam_n(j) <= 0.0_dp) then
+            pressed = .true.
+            return
+         end if
+      end do
+   end function presses_interference
 
    !> Put the springs of the current modes into the contact system.
    subroutine set_system(an, m, st, status)
