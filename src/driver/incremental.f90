@@ -323,7 +323,7 @@ contains
                                          status)
             call check_finite_attempt(att%du, res%contact, an%has_contact, status)
             if (an%has_contact .and. att%converged) then
-               call check_runaway(res%contact, msize, nstep + 1, status)
+               call check_runaway(res%contact, att%du, msize, nstep + 1, status)
             end if
             if (.not. m%autoinc) then
                if (.not. status%ok()) exit deck

@@ -98,17 +98,49 @@ contains
    !! hub pushed off its shaft: 1.6e7 mm after one increment, "converged" because the
    !! round-off of a body moved that far swamps every criterion).  No static equilibrium
    !! exists; the run says so instead of accepting the motion, when some closed pair slips.
+   !! The same for any displacement of the attempt beyond RUNAWAY_SIZES times the model's
+   !! extent, slip or none: a body whose contact opened or released at zero load and that
+   !! nothing else holds is moved by the next load over the round-off of a singular matrix
+   !! (a gasket's flange unloaded to zero and reloaded: 1.8e9 mm, every later increment
+   !! "converged" with a criterion scaled by forces of that size).
    !! (Checked on converged attempts:
    !! one that failed says why it failed, and its last iterate may be anywhere.)
-   subroutine check_runaway(st, msize, step, status)
+   subroutine check_runaway(st, du, msize, step, status)
       type(contact_state_t), intent(in) :: st        !! the attempt's modes and increments
+      real(dp), intent(in) :: du(:, :)               !! (2, npoin) the attempt's displacements
       real(dp), intent(in) :: msize                  !! the model's largest extent [length]
       integer, intent(in) :: step                    !! the step attempted
       type(status_t), intent(inout) :: status
+      real(dp), parameter :: RUNAWAY_SIZES = 10.0_dp
+      integer :: j
+      if (.not. status%ok()) return
+      if (allocated(st%md) .and. allocated(st%dut)) then
+         if (size(st%dut) == size(st%md)) call check_slide(st, msize, step, status)
+      end if
+      if (.not. status%ok()) return
+      if (size(du) > 0) then
+         if (maxval(abs(du)) > RUNAWAY_SIZES*msize) then
+            j = maxloc(maxval(abs(du), dim=1), dim=1)
+            call status%set(STAT_NO_CONVERGENCE, 'in increment '//itoa(step)//' node '// &
+                            itoa(j)//' moved '//rtoa(maxval(abs(du(:, j))))//', more than '// &
+                            'ten times the model''s size ('//rtoa(msize)//'): a body moves '// &
+                            'without bound -- held by nothing once its contact opened or '// &
+                            'released (a stack unloaded to zero and loaded again), or a '// &
+                            'restraint is missing; a small-displacement analysis has no answer '// &
+                            'there (docs/contact.md, "Checks on every run")')
+         end if
+      end if
+   end subroutine check_runaway
+
+   !> check_runaway's slide: a closed pair slid by more than the model's size while some pair
+   !! slips.
+   subroutine check_slide(st, msize, step, status)
+      type(contact_state_t), intent(in) :: st
+      real(dp), intent(in) :: msize
+      integer, intent(in) :: step
+      type(status_t), intent(inout) :: status
       integer :: j, jmax, nclosed, nslip
       real(dp) :: ut, utmax
-      if (.not. status%ok() .or. .not. allocated(st%md) .or. .not. allocated(st%dut)) return
-      if (size(st%dut) /= size(st%md)) return
       jmax = 0
       utmax = 0.0_dp
       nclosed = 0
@@ -132,7 +164,7 @@ contains
                       'a body moves without bound -- its load exceeds what the friction of its '// &
                       'contact can carry, or a restraint is missing; a static analysis has no '// &
                       'equilibrium to find (the pairs assume small sliding: docs/contact.md)')
-   end subroutine check_runaway
+   end subroutine check_slide
 
    !> Stop (STAT_NONFINITE) if a spring stiffness of the current modes is not
    !! finite (the law's tangent at an overflowing pressure), before a
