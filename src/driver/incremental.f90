@@ -51,7 +51,7 @@ module incremental
    use contact_algorithm, only: contact_state_t, commit_increment, law_drift, MAX_SWITCH, &
          tangential_drift
    use step_audit, only: check_finite_attempt, check_runaway, check_finite_step, audit_step, &
-         note_doubts, doubt_summary, &
+         note_doubts, doubt_summary, check_runaway_displacement, model_size, &
                          sliding_warning, run_history_t, IMBALANCE_NOT_COMPUTED, &
                          imbalance_limit
    use contact_start, only: init_contact_states, start_pressure
@@ -295,8 +295,7 @@ contains
 
       allocate (fext(2, m%npoin), fext_new(2, m%npoin), carry(an%map%neq), dlam(m%ncase), &
                 ve_old(an%npair))
-      msize = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), &
-                  maxval(m%coord(2, :)) - minval(m%coord(2, :)))
+      msize = model_size(m%coord)
       fext = 0.0_dp
       carry = 0.0_dp
       nstep = 0
@@ -479,6 +478,8 @@ contains
       end if
       call check_finite_step(res%body_fields_t, res%contact, an%has_contact, srec%drift, &
                              srec%full, status)
+      if (an%has_contact) call check_runaway_displacement(res%disp, model_size(m%coord), &
+                                                          srec%step, status)
       if (.not. status%ok()) return
 
       ! invariants (SPEC §7): bodies in equilibrium (where their fields were computed, to

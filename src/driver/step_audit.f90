@@ -34,7 +34,7 @@ module step_audit
    implicit none
    private
    public :: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
-         pair_list, check_runaway
+         pair_list, check_runaway, check_runaway_displacement, model_size
    public :: sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, &
          imbalance_limit
 
@@ -105,10 +105,55 @@ contains
       real(dp), intent(in) :: msize                  !! the model's largest extent [length]
       integer, intent(in) :: step                    !! the step attempted
       type(status_t), intent(inout) :: status
-      integer :: j, jmax, nclosed, nslip
-      real(dp) :: ut, utmax
       if (.not. status%ok() .or. .not. allocated(st%md) .or. .not. allocated(st%dut)) return
       if (size(st%dut) /= size(st%md)) return
+      call check_slide(st, msize, step, status)
+   end subroutine check_runaway
+
+   !> Stop (STAT_NO_CONVERGENCE) a step of a contact model whose total displacement moves a
+   !! node by more than RUNAWAY_SIZES times the model's largest extent, slip or none: a body
+   !! whose contact opened or released at zero load and that nothing else holds is moved by
+   !! the next load over the round-off of a matrix singular in its rigid-body mode (a gasket
+   !! between two flanges unloaded to zero and reloaded: the upper flange 1.8e9 mm away, and
+   !! every later increment "converged", its criterion scaled by forces of that size).
+   !! Checked on the accepted step after check_finite_step, whose message names a law that
+   !! overflows at such closures.
+   subroutine check_runaway_displacement(disp, msize, step, status)
+      real(dp), intent(in) :: disp(:, :)             !! (2, npoin) the total displacements
+      real(dp), intent(in) :: msize                  !! the model's largest extent [length]
+      integer, intent(in) :: step                    !! the step
+      type(status_t), intent(inout) :: status
+      real(dp), parameter :: RUNAWAY_SIZES = 10.0_dp
+      integer :: j
+      if (.not. status%ok() .or. size(disp) == 0) return
+      if (.not. (maxval(abs(disp)) > RUNAWAY_SIZES*msize)) return
+      j = maxloc(maxval(abs(disp), dim=1), dim=1)
+      call status%set(STAT_NO_CONVERGENCE, 'in increment '//itoa(step)//' node '//itoa(j)// &
+                      ' moved '//rtoa(maxval(abs(disp(:, j))))//', more than ten times the '// &
+                      'model''s size ('//rtoa(msize)//'): a body moves without bound -- held '// &
+                      'by nothing once its contact opened or released (a stack unloaded to '// &
+                      'zero and loaded again), or a restraint is missing; a small-displacement '// &
+                      'analysis has no answer there (docs/contact.md, "Checks on every run")')
+   end subroutine check_runaway_displacement
+
+   !> The model's largest extent (its bounding box's longer side) [length].
+   pure real(dp) function model_size(coord) result(size_)
+      real(dp), intent(in) :: coord(:, :)            !! (2, npoin)
+      size_ = 0.0_dp
+      if (size(coord, 2) == 0) return
+      size_ = max(maxval(coord(1, :)) - minval(coord(1, :)), &
+                  maxval(coord(2, :)) - minval(coord(2, :)))
+   end function model_size
+
+   !> check_runaway's slide: a closed pair slid by more than the model's size while some pair
+   !! slips.
+   subroutine check_slide(st, msize, step, status)
+      type(contact_state_t), intent(in) :: st
+      real(dp), intent(in) :: msize
+      integer, intent(in) :: step
+      type(status_t), intent(inout) :: status
+      integer :: j, jmax, nclosed, nslip
+      real(dp) :: ut, utmax
       jmax = 0
       utmax = 0.0_dp
       nclosed = 0
@@ -132,7 +177,7 @@ contains
                       'a body moves without bound -- its load exceeds what the friction of its '// &
                       'contact can carry, or a restraint is missing; a static analysis has no '// &
                       'equilibrium to find (the pairs assume small sliding: docs/contact.md)')
-   end subroutine check_runaway
+   end subroutine check_slide
 
    !> Stop (STAT_NONFINITE) if a spring stiffness of the current modes is not
    !! finite (the law's tangent at an overflowing pressure), before a

@@ -511,7 +511,13 @@ contains
          write (u, '(a,es12.4,a,i0,a)') '  worst law drift     ', s%worst_drift, ' (increment ', &
                s%worst_drift_step, ')'
       end if
-      if (len(s%estimate) > 0) write (u, '(a)') s%estimate
+      ! (followed by the estimate at the largest strain energy, the end's line says it is the
+      ! end's: at zero load that of a residual field)
+      if (len(s%estimate) > 0 .and. len(s%peak_estimate) > 0) then
+         write (u, '(a,i0,a)') ' at the end (increment ', s%nstep, '):'//s%estimate
+      else if (len(s%estimate) > 0) then
+         write (u, '(a)') s%estimate
+      end if
       if (len(s%peak_estimate) > 0) write (u, '(a)') s%peak_estimate
       write (b, '(f12.2)') seconds
       write (u, '(a,i0,a,i0,a)') ' ', s%solutions_total, ' solutions in ', s%nstep, &

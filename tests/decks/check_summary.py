@@ -277,6 +277,12 @@ def main(h5, lis):
             )
             estimate_line(s, m.group(3), "peak_")
             continue
+        m = re.match(r" at the end \(increment (\d+)\):( estimated discretization error .*)$", t)
+        if m:
+            equal("increments", int(m.group(1)), s["increments"])
+            need(s, "peak_estimate_increment")  # the line only precedes the peak's
+            estimate_line(s, m.group(2), "")
+            continue
         if estimate_line(s, t, ""):
             continue
         m = re.match(r" (\d+) solutions in (\d+) increments, ([\d.]+) s$", t)
