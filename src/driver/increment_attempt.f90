@@ -20,7 +20,7 @@ module increment_attempt
          augment_multipliers, early_update, &
                                 drop_regularisation, regularise_slip, &
                                 anchor_regularisation, release_anchors, settle_frozen, &
-                                open_held_tension, hold_at_rest
+                                open_held_tension, hold_at_rest, TS_SLIP
    use contact_start, only: increment_pressure, separating_load
    use model, only: model_t
    use step_audit, only: check_finite_springs
@@ -134,6 +134,7 @@ contains
       integer, intent(in) :: inc                !! the increment, for the message
       type(status_t), intent(inout) :: status
       character(len=:), allocatable :: what, advice
+      integer :: nclosed
       if (att%converged) return
       advice = '; reduce the increment size'
       if (.not. autoinc) advice = advice//', use OPTIONS AUTOINC'
@@ -168,6 +169,14 @@ contains
       ! (a pair the guard froze in its mode: said beside the criterion that failed)
       if (st%chatter) what = what//'; a pair changed its state 6 times within the '// &
                              'increment and was held in its mode (chatter)'
+      ! (every closed pair slipping at the end: the likeliest cause, said beside it)
+      if (allocated(st%md)) then
+         nclosed = count(st%md%closed)
+         if (nclosed > 0 .and. count(st%md%closed .and. st%md%tstate == TS_SLIP) == nclosed) &
+            what = what//'; every closed pair slips at the end ('//itoa(nclosed)//' of '// &
+                   itoa(nclosed)//'): a load that is a force may exceed what the contact''s '// &
+                   'friction can carry, or a restraint is missing'
+      end if
       call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                       itoa(att%solutions)//' solutions: '//what//advice)
    end subroutine attempt_failure
