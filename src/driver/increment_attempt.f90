@@ -98,6 +98,8 @@ module increment_attempt
       integer :: nchanged = 0                      !! pairs that changed their
                                                    !! mode in the last solution
       integer :: first_changed = 0                 !! the first of them
+      logical :: loaded = .false.                  !! the external forces are not zero
+                                                   !! (attempt_failure's diagnosis)
    end type attempt_t
 
    !> What a Newton solution started from, for the line search (line_search).
@@ -169,8 +171,9 @@ contains
       ! (a pair the guard froze in its mode: said beside the criterion that failed)
       if (st%chatter) what = what//'; a pair changed its state 6 times within the '// &
                              'increment and was held in its mode (chatter)'
-      ! (every closed pair slipping at the end: the likeliest cause, said beside it)
-      if (allocated(st%md)) then
+      ! (every closed pair slipping at the end of a loaded increment: the likeliest cause, said
+      ! beside it)
+      if (allocated(st%md) .and. att%loaded) then
          nclosed = count(st%md%closed)
          if (nclosed > 0 .and. count(st%md%closed .and. st%md%tstate == TS_SLIP) == nclosed) &
             what = what//'; every closed pair slips at the end ('//itoa(nclosed)//' of '// &
@@ -311,6 +314,7 @@ contains
       type(status_t), intent(inout) :: status
       type(status_t) :: singular
       integer :: spent
+      att%loaded = maxval([0.0_dp, abs(fext_new)]) > 1.0e-12_dp*an%force_scale
       call attempt_pass(an, m, st, dlam, carry, fext_new, first, .false., att, status)
       if (status%code == STAT_SINGULAR .and. an%has_contact) then
          call lift_off(m, st, fext_new, an%force_scale, status)
