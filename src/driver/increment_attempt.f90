@@ -175,10 +175,11 @@ contains
       ! beside it)
       if (allocated(st%md) .and. att%loaded) then
          nclosed = count(st%md%closed)
-         if (nclosed > 0 .and. count(st%md%closed .and. st%md%tstate == TS_SLIP) == nclosed) &
+         if (nclosed > 0 .and. count(st%md%closed .and. st%md%tstate == TS_SLIP) == nclosed) then
             what = what//'; every closed pair slips at the end ('//itoa(nclosed)//' of '// &
                    itoa(nclosed)//'): a load that is a force may exceed what the contact''s '// &
                    'friction can carry, or a restraint is missing'
+         end if
       end if
       call status%set(STAT_NO_CONVERGENCE, 'no convergence in increment '//itoa(inc)//' after '// &
                       itoa(att%solutions)//' solutions: '//what//advice)
