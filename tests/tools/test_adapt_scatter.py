@@ -65,6 +65,16 @@ class ScatterGeo(unittest.TestCase):
             self.assertIn(line, geo)
         self.assertNotIn("Mesh.Algorithm = 6;", geo)
 
+    def test_boundary_layer(self):
+        with open(os.path.join(ROOT, "inputs", "adapt", "hertz_adapt.geo")) as f:
+            text = f.read()
+        geo = av.scatter_geo(text, 0.01, 0.02, "L")
+        self.assertIn("Mesh.Algorithm = 6;", geo)
+        self.assertIn("Field[1].CurvesList = {1}; Field[1].Size = 0.01;", geo)
+        self.assertIn("Field[2].CurvesList = {11}; Field[2].Size = 0.02;", geo)
+        self.assertIn("Field[2].Thickness = 0.16;", geo)
+        self.assertEqual(geo.count("BoundaryLayer Field ="), 2)
+
     def test_missing_line_refused(self):
         with self.assertRaises(SystemExit) as cm:
             av.scatter_geo("Point(1) = {0, 0, 0, h_c};\n", 0.01, 0.02, 5)
