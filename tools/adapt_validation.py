@@ -58,6 +58,7 @@ import argparse
 import csv
 import math
 import os
+import shutil
 import subprocess
 import sys
 
@@ -597,6 +598,8 @@ def main(argv=None):
     args = ap.parse_args(argv)
     exe = find_or_build(args.exe)
     if args.scatter:
+        if shutil.which("gmsh") is None:
+            raise SystemExit("adapt_validation: --scatter needs gmsh (Debian package gmsh)")
         text = scatter_report(args.runs, exe)
         if args.md:
             with open(args.md, "w") as f:
