@@ -3,7 +3,7 @@
 
     tools/adapt_validation.py [--runs DIR] [--reuse] [--target T] [--max-dofs 100000]
                               [--md FILE] [--png FILE] [--exe KONTAKT2D]
-                              [--growth G ...] [--growth-max-dofs 20000]
+                              [--growth G ...] [--growth-max-dofs 20000] [--scatter]
 
 runs `tools/adapt.py DECK --compare` (adaptive against uniform remeshing) on the two decks of
 inputs/adapt/ and measures every mesh of both sequences against the closed forms:
@@ -48,11 +48,17 @@ per step (adapt.py --max-growth G) up to --growth-max-dofs: a finer sampling of 
 where the default growth of 4 lets the measure's error fall by 5 - 30 times within one step and
 the interpolation across that step overstates the DOFs to --tol; its table adds the first mesh
 from which every later one is within --tol (the peak pressure is not monotone in the DOFs).
+With --scatter only the study of the peak pressure's pair-to-pair scatter is run: Hertz with one
+contact spacing (a/20 on the half-plane, 1, 0.8 and 0.5 times it on the cylinder) meshed by three
+of gmsh's 2-D algorithms and with a boundary layer of quadrilaterals along the contact, the pairs
+the same for each: every pair's F/A within 0.8 a against the mean of p0 sqrt(1 - x^2/a^2) over its
+tributary zone.
 """
 import argparse
 import csv
 import math
 import os
+import shutil
 import subprocess
 import sys
 
@@ -427,6 +433,125 @@ def growth_report(gs, tol):
     return "\n".join(md) + "\n"
 
 
+# ---------------------------------------------------------------------- the peak pressure's scatter
+# Hertz with one contact spacing along both surfaces (h_B = a/20 on the half-plane, h_A = ratio h_B
+# on the cylinder), meshed by gmsh's 2-D algorithms 6 (Frontal-Delaunay, the .geo's), 5 (Delaunay)
+# and 1 (MeshAdapt), and by algorithm 6 with a boundary layer of quadrilaterals along both contact
+# curves (gmsh's BoundaryLayer field: first layer the curve's spacing, ratio 1.15, 8 spacings
+# thick; "L"): the 1-D meshes of the curves, and with them the pairs, their weights, areas and
+# gaps, are the same for every variant; only the bodies' elements under the contact differ.
+SCATTER_RATIOS = (1.0, 0.8, 0.5)
+SCATTER_ALGORITHMS = (6, 5, 1, "L")
+SCATTER_ZONE = 0.8          # the pairs within 0.8 a: the ellipse's slope is moderate there
+
+
+def tributary_ellipse(x, a, p0, npts=16):
+    """Hertz's pressure p0 sqrt(1 - s^2/a^2) averaged over the tributary zone of every pair at the
+    sorted positions x (the hat function of its node on the segments to its neighbours; the first
+    and last pair one-sided): what F/A of a pair is when the discrete pressure is exact.  Gauss-
+    Legendre with npts points per segment (the segments within 0.8 a: a smooth integrand)."""
+    x = np.asarray(x, float)
+    g, w = np.polynomial.legendre.leggauss(npts)
+    out = np.empty_like(x)
+    for i in range(len(x)):
+        num = den = 0.0
+        for j in (i - 1, i + 1):
+            if j < 0 or j >= len(x):
+                continue
+            lo, hi = sorted((x[i], x[j]))
+            s = 0.5 * (lo + hi) + 0.5 * (hi - lo) * g
+            hat = 1.0 - np.abs(s - x[i]) / (hi - lo)
+            p = p0 * np.sqrt(np.clip(1.0 - (s / a) ** 2, 0.0, None))
+            num += 0.5 * (hi - lo) * np.sum(w * hat * p)
+            den += 0.5 * (hi - lo) * np.sum(w * hat)
+        out[i] = num / den
+    return out
+
+
+def scatter_geo(text, h_a, h_b, algorithm):
+    """hertz_adapt.geo with the sizes h_a (the cylinder's contact arc) and h_b (the half-plane's
+    contact line) at both ends of the contact curves, and gmsh's 2-D algorithm (an int), or "L":
+    the .geo's algorithm and a boundary layer of quadrilaterals along both contact curves."""
+    layer = algorithm == "L"
+    if layer:
+        algorithm = 6
+    subs = [("Point(1) = {0, 0, 0, h_c};", "Point(1) = {0, 0, 0, %r};" % h_a),
+            ("Point(2) = {c, yc, 0, h_e};", "Point(2) = {c, yc, 0, %r};" % h_a),
+            ("Point(11) = {0, 0, 0, h_c};", "Point(11) = {0, 0, 0, %r};" % h_b),
+            ("Point(12) = {c, 0, 0, h_e};", "Point(12) = {c, 0, 0, %r};" % h_b),
+            ("Mesh.Algorithm = 6;", "Mesh.Algorithm = %d;" % algorithm)]
+    for old, new in subs:
+        if old not in text:
+            raise SystemExit("adapt_validation: hertz_adapt.geo has no line %r" % old)
+        text = text.replace(old, new)
+    if layer:
+        for k, (curve, h) in enumerate((("1", h_a), ("11", h_b)), start=1):
+            text += ("\nField[%d] = BoundaryLayer; Field[%d].CurvesList = {%s}; Field[%d].Size = %r;\n"
+                     "Field[%d].Ratio = 1.15; Field[%d].Quads = 1; Field[%d].Thickness = %r;\n"
+                     "BoundaryLayer Field = %d;\n" % (k, k, curve, k, h, k, k, k, 8 * h, k))
+    return text
+
+
+def scatter_run(runs, exe, ratio, algorithm):
+    """One scatter mesh: gmsh, kontakt2d, and per pair within SCATTER_ZONE a the error of F/A
+    against the tributary mean of the ellipse.  Returns a dict with the contact definition."""
+    ex = hertz_exact()
+    a, p0 = ex["a"], ex["p0"]
+    h_b = a / 20.0
+    out = os.path.join(runs, "scatter", "r%.2f_alg%s" % (ratio, algorithm))
+    os.makedirs(out, exist_ok=True)
+    src = os.path.join(ROOT, "inputs", "adapt", "hertz_adapt")
+    with open(src + ".geo") as f:
+        geo = scatter_geo(f.read(), ratio * h_b, h_b, algorithm)
+    with open(os.path.join(out, "hertz.geo"), "w") as f:
+        f.write(geo)
+    with open(src + ".dat") as f:
+        deck = f.read().replace("hertz_adapt.msh", "hertz.msh")
+    with open(os.path.join(out, "hertz.dat"), "w") as f:
+        f.write(deck)
+    base = os.path.join(out, "hertz")
+    subprocess.run(["gmsh", "-2", "-format", "msh41", base + ".geo", "-o", base + ".msh"], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    subprocess.run([exe, base + ".dat", "-o", base + ".h5", "-l", base + ".lis", "-q"], check=True)
+    r = Result(base + ".h5")
+    x = r.contact.position[:, 0]
+    order = np.argsort(x)
+    x, p = x[order], r.last.contact("pressure")[order]
+    zone = x < SCATTER_ZONE * a
+    err = p[zone] / tributary_ellipse(x, a, p0)[zone] - 1.0
+    if np.count_nonzero(zone) < 5:
+        raise SystemExit("adapt_validation: %s has %d pairs within %g a" % (base, np.count_nonzero(zone),
+                                                                          SCATTER_ZONE))
+    contact = {k: np.asarray(getattr(r.contact, k)) for k in ("node_a", "master_nodes", "master_weights",
+                                                              "area", "gap")}
+    return dict(ratio=ratio, algorithm=algorithm, spacing=float(np.median(np.diff(x[zone]))),
+                axis=100.0 * (p[0] / p0 - 1.0), err=100.0 * err, contact=contact)
+
+
+def scatter_report(runs, exe):
+    """The table of docs/adaptivity.md, "The peak pressure's scatter": per spacing ratio and gmsh
+    algorithm the axis pair's error against p0, the rms and largest pair error e against the
+    tributary mean of the ellipse, the rms of e's second difference (the pair-to-pair part, which
+    a smooth error profile has not), and whether the pairing is identical across the algorithms."""
+    md = ["| h_A / h_B | gmsh algorithm | pairs within 0.8 a | spacing h_A [mm] | axis pair against p0 | "
+          "rms of the pairs against the ellipse | largest | pair to pair: rms of e_i - (e_i-1 + e_i+1)/2 | "
+          "pairing the same as algorithm %d's |" % SCATTER_ALGORITHMS[0], "|---|---|---|---|---|---|---|---|---|"]
+    for ratio in SCATTER_RATIOS:
+        first = None
+        for alg in SCATTER_ALGORITHMS:
+            s = scatter_run(runs, exe, ratio, alg)
+            first = first or s
+            same = all(first["contact"][k].shape == s["contact"][k].shape
+                       and np.array_equal(first["contact"][k], s["contact"][k]) for k in s["contact"])
+            e = s["err"]
+            jump = e[1:-1] - 0.5 * (e[:-2] + e[2:])
+            md.append("| %.2f | %s | %d | %.4f | %+.2f %% | %.2f %% | %.2f %% | %.2f %% | %s |" % (
+                ratio, "6 + boundary layer" if alg == "L" else alg, len(e), s["spacing"], s["axis"],
+                math.sqrt(np.mean(e ** 2)), np.max(np.abs(e)), math.sqrt(np.mean(jump ** 2)),
+                "yes" if same else "no"))
+    return "\n".join(md) + "\n"
+
+
 def plot(studies, png):
     import matplotlib
     matplotlib.use("Agg")
@@ -467,8 +592,21 @@ def main(argv=None):
                     help="also run the adaptive route with at most this growth of the elements per step "
                     "(e.g. 1.5), up to --growth-max-dofs, for the DOFs to --tol")
     ap.add_argument("--growth-max-dofs", type=int, default=20000)
+    ap.add_argument("--scatter", action="store_true",
+                    help="only the study of the peak pressure's scatter: Hertz at one contact spacing, "
+                    "three spacing ratios of the surfaces, three gmsh algorithms (docs/adaptivity.md)")
     args = ap.parse_args(argv)
     exe = find_or_build(args.exe)
+    if args.scatter:
+        if shutil.which("gmsh") is None:
+            raise SystemExit("adapt_validation: --scatter needs gmsh (Debian package gmsh)")
+        text = scatter_report(args.runs, exe)
+        if args.md:
+            with open(args.md, "w") as f:
+                f.write(text)
+        else:
+            print(text)
+        return 0
     studies = [study(n, args.runs, args.target, args.max_dofs, exe, args.reuse) for n in args.cases]
     text = report(studies, args.tol)
     if args.growth:
