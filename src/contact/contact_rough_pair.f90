@@ -44,7 +44,7 @@ module contact_rough_pair
    public :: rough_begin, evaluate_rough_pair, rough_commit, set_kt
    ! the parts, public for their unit tests
    public :: newton_normal_stiffness, tangential_return, tangential_explicit, touching_band, &
-             reclose_threshold, branch_closure, reload_from_zero, hold_below_point
+             reclose_threshold, branch_closure, reload_from_zero
 
    !> RETURN: lower bound of the secant tangential stiffness of a pair whose iterates
    !! cycle between tangential states, as a fraction of K_T^e (about the branch slope
@@ -357,7 +357,8 @@ contains
                md%kn = s%fn/max(s%un - md%uthr, tiny(1.0_dp))
                fn = md%kn*(u - md%uthr)
                call flag(r%changed, md%nswitch, r%chatter)
-            else if (returning .and. hold_below_point(ifc, s, md, pr%area, u, fnprev)) then
+            else if (returning .and. ifc%m2 <= 1.0_dp .and. md%on_unloading .and. s%closed .and. &
+                     u < md%uthr .and. u > md%uthr - 1.0e-6_dp*abs(md%ua - md%uthr)) then
                ! RETURN, within 1e-6 of the branch's travel below its zero-force point (the
                ! accuracy of a solution in which the pair is the last support of a body, its
                ! chord stiffness vanishing): still touching, on the secant from A to the point,
@@ -438,31 +439,6 @@ contains
          r%ft = ft
       end associate
    end function evaluate_rough_pair
-
-   !> RETURN, a closed pair on a convex unloading branch (m2 <= 1) found below
-   !! its zero-force point u_thr by less than 1e-6 of the branch's travel: held
-   !! there (touching, on the secant from A, K (u - u_thr)), so that the next
-   !! solution brings it back to the point -- unless it was held in the last
-   !! solution already and that solution did not bring it back: its tension
-   !! (fnprev < 0) has not fallen to half.  Such a tension is no round-off of a
-   !! last support; the pair's neighbours balance it (generated scene 134, its
-   !! zero-load increment: a pair held at -2e-8 N by the secant from A against
-   !! its neighbours' 7e-9 and 1.3e-8 N, a self-equilibrated state of the block
-   !! that the law, zero force below u_thr, does not allow; the out-of-balance
-   !! force stalled at 4.9e-9 against 1.1e-9).  The pair then opens, as below the
-   !! band.
-   pure logical function hold_below_point(ifc, s, md, area, u, fnprev) result(yes)
-      type(interface_t), intent(in) :: ifc
-      type(pair_state_t), intent(in) :: s
-      type(pair_mode_t), intent(in) :: md     !! the pair's mode (held: held in the last solution)
-      real(dp), intent(in) :: area, u, fnprev
-      real(dp) :: fheld
-      yes = .false.
-      if (.not. (ifc%m2 <= 1.0_dp .and. md%on_unloading .and. s%closed)) return
-      if (.not. (u < md%uthr .and. u > md%uthr - 1.0e-6_dp*abs(md%ua - md%uthr))) return
-      fheld = area*md%pa/max(md%ua - md%uthr, tiny(1.0_dp))*(u - md%uthr)
-      yes = .not. (md%held .and. fnprev < 0.0_dp .and. fheld < 0.5_dp*fnprev)
-   end function hold_below_point
 
    !> Normal spring stiffness of a closed rough pair for the next Newton
    !! solution (RETURN): the tangent of its branch at its closure, except
