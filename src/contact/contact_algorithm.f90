@@ -154,8 +154,40 @@ contains
          st%md(j)%settled = .not. r%changed .and. (r%md%closed .eqv. md%closed) .and. &
                             (r%md%on_unloading .eqv. md%on_unloading) .and. &
                             r%md%tstate == md%tstate .and. r%md%tsign == md%tsign
+         if (.not. st%md(j)%settled) call settle_same_forces(cdef, st, j, r)
       end do
    end subroutine settle_frozen
+
+   !> A frozen rough pair whose free evaluation `r` (settle_frozen) gives another
+   !! mode but the same forces, to round-off of the pair's force scale (1e-12, the
+   !! scale at which tangential_return calls a pair unloaded): the mode it was
+   !! frozen in and the one its displacements give differ only where the law does
+   !! not tell them apart -- a pair frozen closed found below its zero-force point
+   !! at zero force (open: zero force; generated scene 171, the zero-load end of a
+   !! tangential history), or frozen slipping in one direction at zero normal force
+   !! (slip in no particular direction, F_T = 0; scene 178).  The solution balances
+   !! the law's forces, so it is on the law: the pair takes the mode its
+   !! displacements give (for the commit) and is settled, no doubt of the
+   !! increment.  Where the forces differ (a frozen mode that carries a force the
+   !! law does not give, or the reverse) it stays frozen: the doubt stands.
+   pure subroutine settle_same_forces(cdef, st, j, r)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      integer, intent(in) :: j
+      type(rough_outcome_t), intent(in) :: r
+      real(dp) :: fref
+      integer :: nsw
+      fref = max(abs(st%s(j)%fn), cdef%pairs(j)%area*max(st%md(j)%pa, r%md%pa), abs(st%fn(j)), &
+                 abs(r%fn), tiny(1.0_dp))
+      if (abs(r%fn - st%fn(j)) > 1.0e-12_dp*fref .or. abs(r%ft - st%ft(j)) > 1.0e-12_dp*fref) return
+      if (r%md%on_unloading .neqv. st%md(j)%on_unloading) return
+      nsw = st%md(j)%nswitch
+      st%md(j) = r%md
+      st%md(j)%nswitch = nsw
+      st%md(j)%settled = .true.
+      st%fn(j) = r%fn
+      st%ft(j) = r%ft
+   end subroutine settle_same_forces
 
    !> RETURN, the second pass of an increment whose system turned singular
    !! (regularise_slip), once the out-of-balance force is within its limit and

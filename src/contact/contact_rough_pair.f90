@@ -418,7 +418,8 @@ contains
 
          ! Newton stiffness for the next solve of a RETURN update
          if (returning .and. md%closed .and. .not. held_now) md%kn = &
-            newton_normal_stiffness(ifc, md, pr%area, s%fn, fnprev, fpred, fn, u, dun, regularise)
+            newton_normal_stiffness(ifc, md, pr%area, s%fn, fnprev, fpred, fn, u, dun, regularise, &
+                                    frozen_below=.not. may_switch .and. u <= md%uthr - utol)
 
          ! 3. tangential (SPEC §4.3 item 3 and 4)
          if (md%closed .and. ifc%friction /= FRICTION_NONE) then
@@ -474,7 +475,7 @@ contains
    !!   is raised to 1e-9 of it (the system's pivot test is 1e-12 of the
    !!   diagonal: a body resting on such a pair alone stays regular).
    pure real(dp) function newton_normal_stiffness(ifc, md, area, fn0, fnprev, fpred, fn, u, dun, &
-                                                  regularise) result(k)
+                                                  regularise, frozen_below) result(k)
       type(interface_t), intent(in) :: ifc
       type(pair_mode_t), intent(in) :: md
       real(dp), intent(in) :: area     !! lumped area
@@ -484,7 +485,18 @@ contains
       real(dp), intent(in) :: fn, u    !! force and closure now
       real(dp), intent(in) :: dun      !! closure increment so far
       logical, intent(in) :: regularise  !! contact_state_t%regularise: before half the solutions
+      logical, intent(in), optional :: frozen_below  !! frozen closed (MAX_SWITCH) below u_thr
       real(dp) :: fref, ktan, kmean
+      if (present(frozen_below)) then
+         if (frozen_below .and. md%on_unloading .and. md%ua > md%uthr) then
+            ! frozen closed by the guard against chatter, below its zero-force point: its law
+            ! gives zero force there whatever the closure, so its stiffness is zero, raised to
+            ! 1e-9 of the branch's mean stiffness (regularity, as below); a stiffness the law
+            ! does not have would carry forces in the solve that the pair never gives
+            k = 1.0e-9_dp*area*md%pa/(md%ua - md%uthr)
+            return
+         end if
+      end if
       ! the force scale of the pair: its forces in this increment and, on the unloading
       ! branch, the force at A (a pair resting at zero force has no other)
       fref = max(fn0, abs(fnprev), fn, tiny(1.0_dp))
