@@ -357,7 +357,7 @@ contains
       real(dp), intent(in) :: xygp(:, :)       !! (2, ngp)
       real(dp), intent(in) :: sig(:, :)        !! (4, ngp)
       integer :: ie, ig
-      real(dp) :: s1, s2, ang
+      real(dp) :: s1, s2, ang, v(8)
       character(len=115) :: line
       logical :: ok
       write (u, '(/a)') ' STRESSES AT GAUSS POINTS'
@@ -368,8 +368,10 @@ contains
          do ig = gp_start(ie), gp_start(ie + 1) - 1
             call principal_stresses(sig(:, ig), s1, s2, ang)
             ! the line built without the run time's conversion where certain (stress_line)
-            call stress_line(ie, ig - gp_start(ie) + 1, [xygp(:, ig), sig(:, ig), s1, s2], ang, &
-                             line, ok)
+            v(1:2) = xygp(:, ig)
+            v(3:6) = sig(:, ig)
+            v(7:8) = [s1, s2]
+            call stress_line(ie, ig - gp_start(ie) + 1, v, ang, line, ok)
             if (ok) then
                write (u, '(a)') line
             else
