@@ -709,10 +709,10 @@ contains
       character(len=115), intent(out) :: line
       logical, intent(out) :: ok
       integer :: k
-      call put_int(ie, line(1:7), ok)
-      if (ok) call put_int(ig, line(8:12), ok)
+      call put_int(ie, 7, line(1:7), ok)
+      if (ok) call put_int(ig, 5, line(8:12), ok)
       do k = 1, 8
-         if (ok) call put_es(v(k), 4, line(1 + 12*k:12 + 12*k), ok)
+         if (ok) call put_es(v(k), 12, 4, line(1 + 12*k:12 + 12*k), ok)
       end do
       if (ok) call put_f2(ang, line(109:115), ok)
    end subroutine stress_line
@@ -723,30 +723,30 @@ contains
       real(dp), intent(in) :: v(2)
       character(len=39), intent(out) :: line
       logical, intent(out) :: ok
-      call put_int(ip, line(1:7), ok)
-      if (ok) call put_es(v(1), 7, line(8:23), ok)
-      if (ok) call put_es(v(2), 7, line(24:39), ok)
+      call put_int(ip, 7, line(1:7), ok)
+      if (ok) call put_es(v(1), 16, 7, line(8:23), ok)
+      if (ok) call put_es(v(2), 16, 7, line(24:39), ok)
    end subroutine node_line
 
    !> A non-negative integer right-justified in its field (Iw).
-   pure subroutine put_int(n, field, ok)
-      integer, intent(in) :: n
-      character(len=*), intent(out) :: field
+   pure subroutine put_int(n, w, field, ok)
+      integer, intent(in) :: n, w
+      character(len=w), intent(out) :: field
       logical, intent(out) :: ok
       integer :: k, q
       field = ' '
-      ok = n >= 0 .and. n < 10**min(9, len(field))
+      ok = n >= 0 .and. n < 10**min(9, w)
       if (.not. ok) return
       q = n
-      do k = len(field), 1, -1
+      do k = w, 1, -1
          field(k:k) = achar(48 + mod(q, 10))
          q = q/10
          if (q == 0) exit
       end do
    end subroutine put_int
 
-   !> x as ESw.d prints it (d <= 8 digits after the point, a two-digit exponent),
-   !! right-justified in field, without the run time's conversion (its
+   !> x as ESw.d prints it (w the length of field; d <= 8 digits after the point,
+   !! a two-digit exponent), right-justified, without the run time's conversion (its
    !! snprintf made most of the cost of a long listing).  The d + 1
    !! significant digits are m = |x| 10^(d-e) rounded to the nearest integer;
    !! m is computed with a relative error of a few rounding units, under 1e-7
@@ -755,19 +755,19 @@ contains
    !! ok = .false. (the caller writes the value with the run time) for such
    !! near-ties, for zero, subnormal and non-finite x and for exponents
    !! beyond two digits.
-   pure subroutine put_es(x, d, field, ok)
+   pure subroutine put_es(x, w, d, field, ok)
       real(dp), intent(in) :: x
-      integer, intent(in) :: d
-      character(len=*), intent(out) :: field
+      integer, intent(in) :: w, d
+      character(len=w), intent(out) :: field
       logical, intent(out) :: ok
       real(dp), parameter :: TIE_MARGIN = 1.0e-4_dp
       real(dp) :: ax, m, top
-      integer :: e, im, k, w, q
+      integer :: e, im, k, q
       field = ' '
       ax = abs(x)
       ok = .false.
       if (.not. (ax >= tiny(ax) .and. ax <= huge(ax))) return
-      if (d < 1 .or. d > 8 .or. len(field) < d + 7) return
+      if (d < 1 .or. d > 8 .or. w < d + 7) return
       top = 10.0_dp**(d + 1)
       e = floor(log10(ax))
       if (abs(e) > 98) return
@@ -787,7 +787,6 @@ contains
       end if
       if (im < nint(top/10) .or. abs(e) > 99) return
       ! d.ddddE+ee
-      w = len(field)
       field(w - 3:w - 2) = 'E+'
       if (e < 0) field(w - 2:w - 2) = '-'
       field(w - 1:w - 1) = achar(48 + abs(e)/10)
