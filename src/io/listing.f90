@@ -32,6 +32,7 @@ module listing
    public :: reversal_warning, list_reversals, doubt_advice
    public :: close_listing, check_listing, SHORT_TABLE_MAX_NODES
    public :: list_numbering
+   public :: stress_line, node_line
 
    !> A SHORT listing lists the whole mesh's tables (displacements of every
    !! node, stresses at every Gauss point) of its last increment up to this
@@ -313,7 +314,8 @@ contains
       type(body_fields_t), intent(in) :: body
       logical, intent(in), optional :: table
       integer :: ip
-      logical :: whole
+      logical :: whole, ok
+      character(len=39) :: line
       whole = .true.
       if (present(table)) whole = table
       write (u, '(/a)') repeat('-', 78)
@@ -331,7 +333,12 @@ contains
          write (u, '(/a)') ' DISPLACEMENTS'
          write (u, '(a)') '   NODE          X-DISP          Y-DISP'
          do ip = 1, m%npoin
-            write (u, '(i7, 2es16.7)') ip, body%disp(:, ip)
+            call node_line(ip, body%disp(:, ip), line, ok)
+            if (ok) then
+               write (u, '(a)') line
+            else
+               write (u, '(i7, 2es16.7)') ip, body%disp(:, ip)
+            end if
          end do
       end if
       write (u, '(/a)') ' REACTIONS'
@@ -350,7 +357,9 @@ contains
       real(dp), intent(in) :: xygp(:, :)       !! (2, ngp)
       real(dp), intent(in) :: sig(:, :)        !! (4, ngp)
       integer :: ie, ig
-      real(dp) :: s1, s2, ang
+      real(dp) :: s1, s2, ang, v(8)
+      character(len=115) :: line
+      logical :: ok
       write (u, '(/a)') ' STRESSES AT GAUSS POINTS'
       write (u, '(a)') '   ELEM  G.P.     X-COORD     Y-COORD   XX-STRESS   YY-STRESS   &
       &XY-STRESS'// &
@@ -358,8 +367,17 @@ contains
       do ie = 1, m%nelem
          do ig = gp_start(ie), gp_start(ie + 1) - 1
             call principal_stresses(sig(:, ig), s1, s2, ang)
-            write (u, '(i7, i5, 8es12.4, f7.2)') ie, ig - gp_start(ie) + 1, xygp(:, ig), &
-                  sig(:, ig), s1, s2, ang
+            ! the line built without the run time's conversion where certain (stress_line)
+            v(1:2) = xygp(:, ig)
+            v(3:6) = sig(:, ig)
+            v(7:8) = [s1, s2]
+            call stress_line(ie, ig - gp_start(ie) + 1, v, ang, line, ok)
+            if (ok) then
+               write (u, '(a)') line
+            else
+               write (u, '(i7, i5, 8es12.4, f7.2)') ie, ig - gp_start(ie) + 1, xygp(:, ig), &
+                     sig(:, ig), s1, s2, ang
+            end if
          end do
       end do
    end subroutine list_stresses
@@ -681,4 +699,137 @@ contains
          angle = 0.0_dp
       end if
    end subroutine principal_stresses
+
+   !> One line of the Gauss-point table, as '(i7, i5, 8es12.4, f7.2)' writes it
+   !! (see put_es); ok = .false. when a field is left to the run time.
+   pure subroutine stress_line(ie, ig, v, ang, line, ok)
+      integer, intent(in) :: ie, ig
+      real(dp), intent(in) :: v(8)             !! x, y, the 4 stresses, the 2 principal ones
+      real(dp), intent(in) :: ang
+      character(len=115), intent(out) :: line
+      logical, intent(out) :: ok
+      integer :: k
+      call put_int(ie, 7, line(1:7), ok)
+      if (ok) call put_int(ig, 5, line(8:12), ok)
+      do k = 1, 8
+         if (ok) call put_es(v(k), 12, 4, line(1 + 12*k:12 + 12*k), ok)
+      end do
+      if (ok) call put_f2(ang, line(109:115), ok)
+   end subroutine stress_line
+
+   !> A node's line of the displacement or reaction table, as '(i7, 2es16.7)'.
+   pure subroutine node_line(ip, v, line, ok)
+      integer, intent(in) :: ip
+      real(dp), intent(in) :: v(2)
+      character(len=39), intent(out) :: line
+      logical, intent(out) :: ok
+      call put_int(ip, 7, line(1:7), ok)
+      if (ok) call put_es(v(1), 16, 7, line(8:23), ok)
+      if (ok) call put_es(v(2), 16, 7, line(24:39), ok)
+   end subroutine node_line
+
+   !> A non-negative integer right-justified in its field (Iw).
+   pure subroutine put_int(n, w, field, ok)
+      integer, intent(in) :: n, w
+      character(len=w), intent(out) :: field
+      logical, intent(out) :: ok
+      integer :: k, q
+      field = ' '
+      ok = n >= 0 .and. n < 10**min(9, w)
+      if (.not. ok) return
+      q = n
+      do k = w, 1, -1
+         field(k:k) = achar(48 + mod(q, 10))
+         q = q/10
+         if (q == 0) exit
+      end do
+   end subroutine put_int
+
+   !> x as ESw.d prints it (w the length of field; d <= 8 digits after the point,
+   !! a two-digit exponent), right-justified, without the run time's conversion (its
+   !! snprintf made most of the cost of a long listing).  The d + 1
+   !! significant digits are m = |x| 10^(d-e) rounded to the nearest integer;
+   !! m is computed with a relative error of a few rounding units, under 1e-7
+   !! in absolute terms for d <= 8, so rounding it gives the correctly rounded
+   !! digits the run time prints unless m lies within TIE_MARGIN of a half.
+   !! ok = .false. (the caller writes the value with the run time) for such
+   !! near-ties, for zero, subnormal and non-finite x and for exponents
+   !! beyond two digits.
+   pure subroutine put_es(x, w, d, field, ok)
+      real(dp), intent(in) :: x
+      integer, intent(in) :: w, d
+      character(len=w), intent(out) :: field
+      logical, intent(out) :: ok
+      real(dp), parameter :: TIE_MARGIN = 1.0e-4_dp
+      real(dp) :: ax, m, top
+      integer :: e, im, k, q
+      field = ' '
+      ax = abs(x)
+      ok = .false.
+      if (.not. (ax >= tiny(ax) .and. ax <= huge(ax))) return
+      if (d < 1 .or. d > 8 .or. w < d + 7) return
+      top = 10.0_dp**(d + 1)
+      e = floor(log10(ax))
+      if (abs(e) > 98) return
+      m = ax*10.0_dp**(d - e)
+      if (m >= top) then
+         e = e + 1
+         m = ax*10.0_dp**(d - e)
+      else if (m < top/10) then
+         e = e - 1
+         m = ax*10.0_dp**(d - e)
+      end if
+      if (abs(m - aint(m) - 0.5_dp) < TIE_MARGIN) return
+      im = nint(m)
+      if (im >= nint(top)) then
+         im = im/10
+         e = e + 1
+      end if
+      if (im < nint(top/10) .or. abs(e) > 99) return
+      ! d.ddddE+ee
+      field(w - 3:w - 2) = 'E+'
+      if (e < 0) field(w - 2:w - 2) = '-'
+      field(w - 1:w - 1) = achar(48 + abs(e)/10)
+      field(w:w) = achar(48 + mod(abs(e), 10))
+      q = im
+      do k = w - 4, w - 3 - d, -1
+         field(k:k) = achar(48 + mod(q, 10))
+         q = q/10
+      end do
+      field(w - 4 - d:w - 4 - d) = '.'
+      field(w - 5 - d:w - 5 - d) = achar(48 + q)
+      if (x < 0.0_dp) field(w - 6 - d:w - 6 - d) = '-'
+      ok = .true.
+   end subroutine put_es
+
+   !> x as F7.2 prints it (the angle of the stress table), right-justified;
+   !! ok = .false. for values that round to zero, need more than 7
+   !! characters or lie within TIE_MARGIN of a rounding tie (see put_es).
+   pure subroutine put_f2(x, field, ok)
+      real(dp), intent(in) :: x
+      character(len=7), intent(out) :: field
+      logical, intent(out) :: ok
+      real(dp), parameter :: TIE_MARGIN = 1.0e-4_dp
+      real(dp) :: m
+      integer :: im, k, q
+      field = ' '
+      ok = .false.
+      if (.not. abs(x) < 999.0_dp) return
+      m = abs(x)*100.0_dp
+      if (abs(m - aint(m) - 0.5_dp) < TIE_MARGIN) return
+      im = nint(m)
+      if (im == 0) return
+      field(6:7) = achar(48 + mod(im/10, 10))//achar(48 + mod(im, 10))
+      field(5:5) = '.'
+      q = im/100
+      k = 4
+      do
+         field(k:k) = achar(48 + mod(q, 10))
+         q = q/10
+         k = k - 1
+         if (q == 0) exit
+      end do
+      if (x < 0.0_dp) field(k:k) = '-'
+      ok = .true.
+   end subroutine put_f2
 end module listing

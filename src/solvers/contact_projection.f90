@@ -122,6 +122,8 @@ module contact_projection
       integer :: rotate_min_pairs = ROTATE_MIN_PAIRS  !! pairs from which it is
       integer :: p = 0                         !! n - r: the complements' coordinates
       integer, allocatable :: qm(:)            !! (npair) a pair's valid dofs (its basis)
+      integer, allocatable :: iv(:, :)         !! (nd, npair) columns 1:qm: those dofs, in
+                                               !! order (valid_dofs of the set-up's ppos)
       integer, allocatable :: poff(:)          !! (npair) offset of its complement's coordinates
       real(dp), allocatable :: rp(:, :)        !! (p, p) Cholesky factor of S_PP (upper)
       real(dp), allocatable :: gm(:, :)        !! (p, r) G = S_PP^-1 S_PU
@@ -175,7 +177,7 @@ contains
       integer :: j, k, a, nd, np, info, col
       this%ready = .false.
       if (allocated(this%qoff)) deallocate (this%qoff, this%qrank, this%q, this%kscale, this%d, &
-                                            this%qm, this%poff)
+                                            this%qm, this%poff, this%iv)
       if (allocated(this%ls)) deallocate (this%ls)
       if (allocated(this%v)) deallocate (this%v)
       if (allocated(this%rp)) deallocate (this%rp, this%gm, this%gp, this%yp)
@@ -191,9 +193,13 @@ contains
       nd = size(ppos, 1)
       np = size(ppos, 2)
       allocate (this%qoff(np), this%qrank(np), this%q(nd, nd, np), this%kscale(np), &
-                this%d(nd, nd), this%qm(np), this%poff(np))
+                this%d(nd, nd), this%qm(np), this%poff(np), this%iv(nd, np))
       call pair_bases(ppos, kref, this%q, this%qrank, this%qm, this%kscale, info)
       if (info /= 0) return
+      ! the pairs' valid dofs, once (the loops of every later call run over them)
+      do j = 1, np
+         call valid_dofs(ppos(:, j), this%iv(:, j), a)
+      end do
       this%r = 0
       this%p = 0
       do j = 1, np
@@ -464,7 +470,8 @@ contains
       do j = 1, size(ppos, 2)
          rk = this%qrank(j)
          ! the pair's valid dofs, in order (a node-to-node pair uses 4 of its slots)
-         call valid_dofs(ppos(:, j), iv, m)
+         m = this%qm(j)
+         iv(1:m) = this%iv(1:m, j)
          ! D_j = Q_j^T kc_j Q_j on the valid dofs
          do l = 1, rk
             do k = 1, rk
@@ -682,7 +689,8 @@ contains
       else
          ! g_U (t) and g_P
          do j = 1, size(ppos, 2)
-            call valid_dofs(ppos(:, j), iv, m)
+            m = this%qm(j)
+            iv(1:m) = this%iv(1:m, j)
             do k = 1, this%qm(j)
                w = 0.0_dp
                do ia = 1, m
@@ -714,7 +722,8 @@ contains
       end if
       ! x = Q [x_U; x_P]
       do j = 1, size(ppos, 2)
-         call valid_dofs(ppos(:, j), iv, m)
+         m = this%qm(j)
+         iv(1:m) = this%iv(1:m, j)
          do ia = 1, m
             a = iv(ia)
             w = 0.0_dp
@@ -762,25 +771,26 @@ contains
       integer, intent(in) :: ppos(:, :)
       real(dp), intent(in) :: g(:)
       real(dp) :: gmax, w
-      integer :: j, k, a
+      integer :: j, k, a, ia
       yes = .false.
       if (.not. this%disjoint) return
       gmax = maxval(abs(g))
       if (.not. gmax > 0.0_dp) return
+      ! the pairs' valid dofs in order (this%iv): the sums of the loops over all
+      ! of ppos that skip the others, term for term
       do j = 1, size(ppos, 2)
          do k = 1, this%qrank(j)
-            this%t(this%qoff(j) + k) = 0.0_dp
-            do a = 1, size(ppos, 1)
-               if (ppos(a, j) > 0) then
-                  this%t(this%qoff(j) + k) = this%t(this%qoff(j) + k) + &
-                        this%q(a, k, j)*g(ppos(a, j))
-               end if
+            w = 0.0_dp
+            do ia = 1, this%qm(j)
+               a = this%iv(ia, j)
+               w = w + this%q(a, k, j)*g(ppos(a, j))
             end do
+            this%t(this%qoff(j) + k) = w
          end do
       end do
       do j = 1, size(ppos, 2)
-         do a = 1, size(ppos, 1)
-            if (ppos(a, j) <= 0) cycle
+         do ia = 1, this%qm(j)
+            a = this%iv(ia, j)
             w = 0.0_dp
             do k = 1, this%qrank(j)
                w = w + this%q(a, k, j)*this%t(this%qoff(j) + k)

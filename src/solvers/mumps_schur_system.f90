@@ -116,6 +116,7 @@ contains
       if (allocated(this%kref)) deallocate (this%kref)
       allocate (this%kref, source=kref)
       allocate (this%dk, mold=kref)
+      this%dk = 0.0_dp     ! the entries of no contact equation stay zero (set_contact_springs)
       call index_contact_equations(this%peq, this%neq, this%id, this%ceq, this%pos, this%ppos, &
                                    this%cdof)
       this%nc = size(this%ceq)
