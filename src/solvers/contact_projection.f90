@@ -233,6 +233,9 @@ contains
          this%ready = .true.
          return
       end if
+      ! (allocated before the copy: the sanitizers' build read the bounds of the unallocated
+      ! component in the assignment's reallocation test, garbage, as an integer overflow)
+      allocate (this%ls(this%n, this%n))
       this%ls = s
       call dpotrf('U', this%n, this%ls, this%n, info)
       if (info /= 0) return
