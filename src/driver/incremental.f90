@@ -51,7 +51,7 @@ module incremental
    use contact_algorithm, only: contact_state_t, commit_increment, law_drift, MAX_SWITCH, &
          tangential_drift
    use step_audit, only: check_finite_attempt, check_runaway, check_finite_step, audit_step, &
-         note_doubts, doubt_summary, check_runaway_displacement, model_size, &
+         note_doubts, doubt_summary, check_runaway_displacement, &
                          sliding_warning, run_history_t, IMBALANCE_NOT_COMPUTED, &
                          imbalance_limit
    use contact_start, only: init_contact_states, start_pressure
@@ -291,11 +291,12 @@ contains
       integer :: inc, nstep, cuts, ic
       logical :: first, rough_newton, last, written, full
       real(dp) :: frac, step, s
-      real(dp) :: msize                             !! the model's largest extent (check_runaway)
+      real(dp) :: msize                             !! the model's largest extent (runaway checks)
 
       allocate (fext(2, m%npoin), fext_new(2, m%npoin), carry(an%map%neq), dlam(m%ncase), &
                 ve_old(an%npair))
-      msize = model_size(m%coord)
+      msize = max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), &
+                  maxval(m%coord(2, :)) - minval(m%coord(2, :)))
       fext = 0.0_dp
       carry = 0.0_dp
       nstep = 0
@@ -396,7 +397,7 @@ contains
             end if
             if (an%has_contact) call out%note_reversals(m%contact, pa_old, res%contact%s%pa, srec, &
                                                         res%warnings)
-            call finish_step(m, an, res, out, fext, ve_old, srec, status)
+            call finish_step(m, an, res, out, fext, ve_old, msize, srec, status)
             if (.not. status%ok()) exit deck
             cuts = 0
             if (m%autoinc .and. att%solutions <= m%autoinc_easy .and. .not. res%contact%chatter) &
@@ -450,12 +451,13 @@ contains
    end subroutine body_step_fields
 
    !> Fields, checks, output and progress of an accepted step.
-   subroutine finish_step(m, an, res, out, fext, ve_old, srec, status)
+   subroutine finish_step(m, an, res, out, fext, ve_old, msize, srec, status)
       type(model_t), intent(in) :: m
       type(analysis_t), intent(inout) :: an
       type(run_result_t), intent(inout) :: res
       type(run_report_t), intent(inout) :: out
       real(dp), intent(in) :: fext(:, :), ve_old(:)
+      real(dp), intent(in) :: msize                 !! the model's largest extent
       type(step_record_t), intent(inout) :: srec
       type(status_t), intent(inout) :: status
       real(dp), allocatable :: fsp(:, :), fpm(:)
@@ -478,8 +480,7 @@ contains
       end if
       call check_finite_step(res%body_fields_t, res%contact, an%has_contact, srec%drift, &
                              srec%full, status)
-      if (an%has_contact) call check_runaway_displacement(res%disp, model_size(m%coord), &
-                                                          srec%step, status)
+      if (an%has_contact) call check_runaway_displacement(res%disp, msize, srec%step, status)
       if (.not. status%ok()) return
 
       ! invariants (SPEC §7): bodies in equilibrium (where their fields were computed, to

@@ -34,7 +34,7 @@ module step_audit
    implicit none
    private
    public :: check_finite_attempt, check_finite_step, audit_step, note_doubts, doubt_summary, &
-         pair_list, check_runaway, check_runaway_displacement, model_size
+         pair_list, check_runaway, check_runaway_displacement
    public :: sliding_warning, check_finite_springs, run_history_t, IMBALANCE_NOT_COMPUTED, &
          imbalance_limit
 
@@ -105,9 +105,33 @@ contains
       real(dp), intent(in) :: msize                  !! the model's largest extent [length]
       integer, intent(in) :: step                    !! the step attempted
       type(status_t), intent(inout) :: status
+      integer :: j, jmax, nclosed, nslip
+      real(dp) :: ut, utmax
       if (.not. status%ok() .or. .not. allocated(st%md) .or. .not. allocated(st%dut)) return
       if (size(st%dut) /= size(st%md)) return
-      call check_slide(st, msize, step, status)
+      jmax = 0
+      utmax = 0.0_dp
+      nclosed = 0
+      nslip = 0
+      do j = 1, size(st%md)
+         if (.not. st%md(j)%closed) cycle
+         nclosed = nclosed + 1
+         if (st%md(j)%tstate == TS_SLIP) nslip = nslip + 1
+         ut = abs(st%s(j)%ut + st%dut(j))
+         if (ut > utmax) then
+            utmax = ut
+            jmax = j
+         end if
+      end do
+      ! (without a slipping pair the body is held by sticking springs, however soft: a slide
+      ! that large is then the law's overflow or its softness, which other checks name)
+      if (jmax == 0 .or. nslip == 0 .or. .not. (utmax > msize)) return
+      call status%set(STAT_NO_CONVERGENCE, 'in increment '//itoa(step)//' pair '//itoa(jmax)// &
+                      ' slid '//rtoa(utmax)//', more than the model''s size ('//rtoa(msize)// &
+                      '), with '//itoa(nslip)//' of '//itoa(nclosed)//' closed pairs slipping: '// &
+                      'a body moves without bound -- its load exceeds what the friction of its '// &
+                      'contact can carry, or a restraint is missing; a static analysis has no '// &
+                      'equilibrium to find (the pairs assume small sliding: docs/contact.md)')
    end subroutine check_runaway
 
    !> Stop (STAT_NO_CONVERGENCE) a step of a contact model whose total displacement moves a
@@ -135,49 +159,6 @@ contains
                       'zero and loaded again), or a restraint is missing; a small-displacement '// &
                       'analysis has no answer there (docs/contact.md, "Checks on every run")')
    end subroutine check_runaway_displacement
-
-   !> The model's largest extent (its bounding box's longer side) [length].
-   pure real(dp) function model_size(coord) result(size_)
-      real(dp), intent(in) :: coord(:, :)            !! (2, npoin)
-      size_ = 0.0_dp
-      if (size(coord, 2) == 0) return
-      size_ = max(maxval(coord(1, :)) - minval(coord(1, :)), &
-                  maxval(coord(2, :)) - minval(coord(2, :)))
-   end function model_size
-
-   !> check_runaway's slide: a closed pair slid by more than the model's size while some pair
-   !! slips.
-   subroutine check_slide(st, msize, step, status)
-      type(contact_state_t), intent(in) :: st
-      real(dp), intent(in) :: msize
-      integer, intent(in) :: step
-      type(status_t), intent(inout) :: status
-      integer :: j, jmax, nclosed, nslip
-      real(dp) :: ut, utmax
-      jmax = 0
-      utmax = 0.0_dp
-      nclosed = 0
-      nslip = 0
-      do j = 1, size(st%md)
-         if (.not. st%md(j)%closed) cycle
-         nclosed = nclosed + 1
-         if (st%md(j)%tstate == TS_SLIP) nslip = nslip + 1
-         ut = abs(st%s(j)%ut + st%dut(j))
-         if (ut > utmax) then
-            utmax = ut
-            jmax = j
-         end if
-      end do
-      ! (without a slipping pair the body is held by sticking springs, however soft: a slide
-      ! that large is then the law's overflow or its softness, which other checks name)
-      if (jmax == 0 .or. nslip == 0 .or. .not. (utmax > msize)) return
-      call status%set(STAT_NO_CONVERGENCE, 'in increment '//itoa(step)//' pair '//itoa(jmax)// &
-                      ' slid '//rtoa(utmax)//', more than the model''s size ('//rtoa(msize)// &
-                      '), with '//itoa(nslip)//' of '//itoa(nclosed)//' closed pairs slipping: '// &
-                      'a body moves without bound -- its load exceeds what the friction of its '// &
-                      'contact can carry, or a restraint is missing; a static analysis has no '// &
-                      'equilibrium to find (the pairs assume small sliding: docs/contact.md)')
-   end subroutine check_slide
 
    !> Stop (STAT_NONFINITE) if a spring stiffness of the current modes is not
    !! finite (the law's tangent at an overflowing pressure), before a
