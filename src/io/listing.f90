@@ -456,27 +456,31 @@ contains
    end subroutine list_progress_header
 
    !> One progress line for the terminal.  Its load factor is the factor of
-   !! largest magnitude among the load cases, with its sign (a case taken
+   !! load case icase (run_summary's stage_case: the case whose factor varies
+   !! most, which the summary's stages follow), with its sign (a case taken
    !! below zero, a pull, shows as such).
-   subroutine list_progress(u, step, body, seconds, contact)
+   subroutine list_progress(u, step, body, seconds, icase, contact)
       integer, intent(in) :: u
       type(step_record_t), intent(in) :: step
       type(body_fields_t), intent(in) :: body
       real(dp), intent(in) :: seconds                           !! elapsed since the
                                                                 !! start of the run
+      integer, intent(in) :: icase                              !! the load case shown
       type(contact_fields_t), intent(in), optional :: contact   !! used when step%contact
+      integer :: ic
+      ic = min(max(icase, 1), size(step%lambda))
       if (step%contact .and. present(contact) .and. .not. step%full) then
          ! a step whose body fields were skipped (neither written nor listed: step_record_t%full):
          ! its contact figures, a dash for max |u|, which is not known for it
          write (u, '(i6, f13.5, a12, i8, i6, i8, i4, es11.3, f12.3)') step%step, &
-               step%lambda(maxloc(abs(step%lambda), 1)), &
+               step%lambda(ic), &
             '-', count(contact%normal_state /= NS_OPEN), &
             count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), &
             step%solutions, &
             step%repeats, step%residual, seconds
       else if (step%contact .and. present(contact)) then
          write (u, '(i6, f13.5, es12.4, i8, i6, i8, i4, es11.3, f12.3)') step%step, &
-               step%lambda(maxloc(abs(step%lambda), 1)), &
+               step%lambda(ic), &
             maxval(sqrt(body%disp(1, :)**2 + body%disp(2, :)**2)), &
             count(contact%normal_state /= NS_OPEN), &
             count(contact%normal_state /= NS_OPEN .and. contact%tangential_state == TS_SLIP), &
@@ -484,7 +488,7 @@ contains
             step%repeats, step%residual, seconds
       else
          write (u, '(i6, f13.5, 3es14.5, f12.3)') step%step, &
-               step%lambda(maxloc(abs(step%lambda), 1)), &
+               step%lambda(ic), &
             maxval(sqrt(body%disp(1, :)**2 + body%disp(2, :)**2)), sum(body%react(1, :)), &
             sum(body%react(2, :)), seconds
       end if

@@ -42,6 +42,7 @@ module run_report
                       cycle_table_t, numbering_report_t
    use results_hdf5, only: results_file_t
    use run_summary, only: run_summary_t, summarise_run, write_run_summary, write_dissipation, &
+                          stage_case, &
                           estimate_peak_t, note_estimate_peak
    use pretension_report, only: list_pretension_sections, list_pretension_step, &
                                 list_pretension_summary
@@ -80,6 +81,7 @@ module run_report
       integer(i8) :: t0 = 0, rate = 1               !! clock at the start of the run
       type(step_record_t) :: pret_last              !! the last step with section forces (summary)
       type(estimate_peak_t) :: est_peak             !! the estimate at the largest strain energy
+      integer :: icase = 1                          !! the load case of the progress lines
    contains
       procedure :: start => report_start
       procedure :: open => report_open
@@ -174,6 +176,7 @@ contains
          this%have_lis = .false.
          return
       end if
+      this%icase = stage_case(m)
       if (.not. this%quiet) then
          call list_header(stdout, m, info)
          call list_numbering(stdout, numbering)
@@ -182,6 +185,8 @@ contains
          write (stdout, '(a)') ' Results      : '//this%rpath
          if (this%have_lis) write (stdout, '(a)') ' Listing      : '//this%lis_path
          write (stdout, '(a)') repeat('-', 78)
+         if (m%ncase > 1) write (stdout, '(a,i0,a,i0,a)') ' Load factor  : of case ', &
+            this%icase, ' (of ', m%ncase, ' cases) in the progress lines: its factor varies most'
          call list_progress_header(stdout, info%npair > 0)
       end if
    end subroutine report_open
@@ -230,7 +235,8 @@ contains
       if (.not. status%ok()) return
       call system_clock(t1)
       if (.not. this%quiet) then
-         call list_progress(stdout, srec, body, real(t1 - this%t0, dp)/real(this%rate, dp), fields)
+         call list_progress(stdout, srec, body, real(t1 - this%t0, dp)/real(this%rate, dp), &
+                            this%icase, fields)
          flush (stdout)
       end if
    end subroutine report_write_step

@@ -44,7 +44,7 @@ module run_summary
    implicit none
    private
    public :: run_summary_t, summarise_run, write_run_summary, list_run_summary, load_stages
-   public :: estimate_peak_t, note_estimate_peak
+   public :: estimate_peak_t, note_estimate_peak, stage_case
    public :: list_dissipation, write_dissipation
 
    !> A pair with a reversal point counts as unloaded when its pressure has
@@ -94,6 +94,13 @@ module run_summary
       real(dp) :: width = 0.0_dp, area = 0.0_dp
       real(dp) :: approach = 0.0_dp
       real(dp) :: force_n = 0.0_dp, force_t = 0.0_dp
+      ! the same figures for each interface of the deck (their forces are not to be added: a
+      ! bolt's head, nut and clamped faces each carry the preload); printed per interface when
+      ! the model has several
+      integer :: niface = 0
+      integer, allocatable :: if_pairs(:), if_closed(:), if_slip(:), if_peak_pair(:)
+      real(dp), allocatable :: if_peak(:), if_peak_x(:), if_peak_y(:), if_width(:), if_area(:)
+      real(dp), allocatable :: if_approach(:), if_force_n(:), if_force_t(:)
       logical :: unloaded = .false.                 !! some pair was unloaded (residual
                                                     !! closure applies)
       integer :: nunloaded = 0                      !! pairs unloaded
@@ -229,6 +236,7 @@ contains
          s%force_n = sum(cf%force_normal(1:np))
          s%force_t = sum(cf%force_tangential(1:np))
          if (allocated(body%disp)) s%approach = body_approach(m, body%disp)
+         call per_interface(m, body, cf, np, s)
          do k = 1, min(np, size(ua), size(pa))
             if (pa(k) <= 0.0_dp) cycle
             associate (f => m%contact%ifaces(pairs(k)%iface))
@@ -275,9 +283,8 @@ contains
       integer, allocatable :: first(:), last(:), dir(:)
       real(dp), allocatable :: lam(:)
       n = s%nstep
-      s%icase = 1
+      s%icase = stage_case(m)
       if (allocated(m%lambda)) then
-         if (m%ncase > 1) s%icase = maxloc(maxval(m%lambda, 2) - minval(m%lambda, 2), 1)
          allocate (lam(size(m%lambda, 2)))
          lam(:) = m%lambda(s%icase, :)
       else
@@ -314,6 +321,18 @@ contains
       end do
    end subroutine stage_table
 
+   !> The load case the stages (and the terminal's load factor column) follow: the case whose
+   !! factor varies most over the history (a preload held while a service load cycles: the
+   !! service load's case); the first of equals.
+   pure integer function stage_case(m) result(icase)
+      type(model_t), intent(in) :: m
+      icase = 1
+      if (.not. allocated(m%lambda)) return
+      if (m%ncase > 1 .and. size(m%lambda, 1) > 1) then
+         icase = maxloc(maxval(m%lambda, 2) - minval(m%lambda, 2), 1)
+      end if
+   end function stage_case
+
    !> The monotone stages of a load history: lam(1) is the factor at the start,
    !! lam(i+1) after step i.  A stage ends where the factor turns (loading to
    !! unloading or back); steps that hold the factor join the stage before (or
@@ -346,6 +365,49 @@ contains
       last = [last, n]
    end subroutine load_stages
 
+   !> The interface figures of the summary for each interface of the deck (pairs%iface): the
+   !! same definitions as the whole model's, over that interface's pairs alone.
+   pure subroutine per_interface(m, body, cf, np, s)
+      type(model_t), intent(in) :: m                    !! the model
+      type(body_fields_t), intent(in) :: body           !! body fields of the last step (disp)
+      type(contact_fields_t), intent(in) :: cf          !! contact fields of the last step
+      integer, intent(in) :: np                         !! pairs with fields
+      type(run_summary_t), intent(inout) :: s
+      integer :: ni, i, j
+      integer, allocatable :: idx(:)
+      logical :: sel(np), closed(np)
+      ni = 0
+      if (allocated(m%contact%ifaces)) ni = size(m%contact%ifaces)
+      ni = max(ni, maxval(m%contact%pairs(1:np)%iface))
+      s%niface = ni
+      allocate (s%if_pairs(ni), s%if_closed(ni), s%if_slip(ni), s%if_peak_pair(ni), source=0)
+      allocate (s%if_peak(ni), s%if_peak_x(ni), s%if_peak_y(ni), s%if_width(ni), s%if_area(ni), &
+                s%if_approach(ni), s%if_force_n(ni), s%if_force_t(ni), source=0.0_dp)
+      associate (pairs => m%contact%pairs(1:np))
+         closed = cf%normal_state(1:np) /= NS_OPEN
+         do i = 1, ni
+            sel = pairs%iface == i
+            s%if_pairs(i) = count(sel)
+            if (s%if_pairs(i) == 0) cycle
+            s%if_closed(i) = count(sel .and. closed)
+            s%if_slip(i) = count(sel .and. closed .and. cf%tangential_state(1:np) == TS_SLIP)
+            if (s%if_closed(i) > 0) then
+               j = maxloc(cf%pressure(1:np), 1, mask=sel .and. closed)
+               s%if_peak_pair(i) = j
+               s%if_peak(i) = cf%pressure(j)
+               s%if_peak_x(i) = pairs(j)%position(1)
+               s%if_peak_y(i) = pairs(j)%position(2)
+               s%if_area(i) = sum(pairs%area, mask=sel .and. closed)
+               idx = pack([(j, j=1, np)], sel)
+               s%if_width(i) = closed_extent(pairs(idx), closed(idx))
+            end if
+            s%if_force_n(i) = sum(cf%force_normal(1:np), mask=sel)
+            s%if_force_t(i) = sum(cf%force_tangential(1:np), mask=sel)
+            if (allocated(body%disp)) s%if_approach(i) = body_approach(m, body%disp, sel)
+         end do
+      end associate
+   end subroutine per_interface
+
    !> Extent of the closed pairs along the coordinate of largest spread of all pairs.
    pure real(dp) function closed_extent(pairs, closed) result(w)
       use contact_types, only: contact_pair_t
@@ -369,13 +431,22 @@ contains
 
    !> Approach of the bodies (see the module header): bodies are the connected
    !! parts of the mesh; the far points of A and B along the mean pair normal.
-   pure real(dp) function body_approach(m, disp) result(delta)
+   pure real(dp) function body_approach(m, disp, sel) result(delta)
       type(model_t), intent(in) :: m
       real(dp), intent(in) :: disp(:, :)            !! (2, npoin) displacements
-      integer :: body(m%npoin), j, ie, k, ra, r
+      logical, intent(in), optional :: sel(:)       !! the pairs to use (default: all; the
+                                                    !! first size(sel) pairs)
+      integer :: body(m%npoin), j, ie, k, ra, r, np
       real(dp) :: n(2), s(m%npoin), tol, ext
       logical :: in_a(m%npoin), in_b(m%npoin)
-      associate (pairs => m%contact%pairs)
+      logical, allocatable :: use(:)
+      np = size(m%contact%pairs)
+      if (present(sel)) np = min(np, size(sel))
+      allocate (use(np), source=.true.)
+      if (present(sel)) use = sel(1:np)
+      delta = 0.0_dp
+      if (.not. any(use)) return
+      associate (pairs => m%contact%pairs(1:np))
          ! connected parts of the mesh (union-find over the elements)
          ! (path halving keeps the trees flat: linear in practice; without it a mesh
          ! numbered along its length grows chains as long as the mesh, time quadratic)
@@ -391,7 +462,7 @@ contains
             call find(body, j, r)
             body(j) = r
          end do
-         n = [sum(pairs%n(1)), sum(pairs%n(2))]
+         n = [sum(pairs%n(1), mask=use), sum(pairs%n(2), mask=use)]
          n = n/max(norm2(n), tiny(1.0_dp))
          s = n(1)*m%coord(1, :) + n(2)*m%coord(2, :)
          tol = 1.0e-6_dp*max(maxval(m%coord(1, :)) - minval(m%coord(1, :)), &
@@ -399,7 +470,8 @@ contains
          ! the bodies (roots) of the A and B sides, then their nodes: O(npoin + npair)
          in_a = .false.
          in_b = .false.
-         do j = 1, size(pairs)
+         do j = 1, np
+            if (.not. use(j)) cycle
             in_a(body(pairs(j)%node_a)) = .true.
             if (pairs(j)%kind /= PAIR_RIGID) in_b(body(pairs(j)%node_b)) = .true.
          end do
@@ -407,10 +479,10 @@ contains
          in_b = in_b(body)
          ext = maxval(s, mask=in_a)
          in_a = in_a .and. s >= ext - tol
-         if (all(pairs%kind == PAIR_RIGID)) then
+         if (all(pairs%kind == PAIR_RIGID .or. .not. use)) then
             in_b = .false.
-            do j = 1, size(pairs)
-               in_b(pairs(j)%nodes(2)) = .true.      ! the rigid body's reference node
+            do j = 1, np
+               if (use(j)) in_b(pairs(j)%nodes(2)) = .true.   ! the rigid body's reference node
             end do
          else
             ext = minval(s, mask=in_b)
@@ -480,23 +552,25 @@ contains
                'automatic increments: stages not separated', s%solutions(k), s%drift(k)
          end if
       end do
-      if (s%contact) then
+      if (s%contact .and. s%niface > 1) then
+         ! several interfaces: each its own figures (their forces are not to be added)
+         write (u, '(a,i0,a)') ' The interfaces at the end (increment ', s%nstep, '):'
+         do k = 1, s%niface
+            if (s%if_pairs(k) == 0) cycle
+            write (u, '(a,i0)') '  interface ', k
+            call write_interface_lines(u, '    ', s, s%if_peak_pair(k), s%if_peak(k), &
+                                       [s%if_peak_x(k), s%if_peak_y(k)], s%if_width(k), &
+                                       s%if_closed(k), s%if_pairs(k), s%if_area(k), &
+                                       s%if_approach(k), s%if_force_n(k), s%if_force_t(k), &
+                                       s%if_slip(k))
+         end do
+      else if (s%contact) then
          write (u, '(a,i0,a)') ' The interface at the end (increment ', s%nstep, '):'
-         if (s%peak_pair > 0) then
-            write (u, '(a,es12.4,1x,a,a,i0,a,es12.4,a,es12.4,a)') '  peak pressure       ', &
-                  s%peak_pressure, &
-               s%stress_unit, ' at pair ', s%peak_pair, ' (', s%peak_xy(1), ',', s%peak_xy(2), ')'
-         else
-            write (u, '(a)') '  peak pressure        none: no pair is closed'
-         end if
-         write (u, '(a,es12.4,1x,a,a,i0,a,i0,a,es12.4,1x,a)') '  contact width       ', s%width, &
-               s%length_unit, &
-            ' (', s%nclosed, ' of ', s%npair, ' pairs closed), area', s%area, s%length_unit//'2'
-         write (u, '(a,es12.4,1x,a)') '  approach            ', s%approach, s%length_unit
-         write (u, '(a,es12.4,a,es12.4,1x,a)') '  total force normal  ', s%force_n, &
-               ', tangential', s%force_t, &
-            s%force_unit
-         write (u, '(a,i0,a,i0,a)') '  slipping pairs       ', s%nslip, ' of ', s%nclosed, ' closed'
+         call write_interface_lines(u, '  ', s, s%peak_pair, s%peak_pressure, s%peak_xy, &
+                                    s%width, s%nclosed, s%npair, s%area, s%approach, s%force_n, &
+                                    s%force_t, s%nslip)
+      end if
+      if (s%contact) then
          if (s%unloaded) then
             write (u, '(a,es12.4,1x,a,a,i0,a)') '  residual closure    ', s%residual_closure, &
                   s%length_unit, &
@@ -525,6 +599,39 @@ contains
          trim(adjustl(b))//' s'
       write (u, '(a)') ' '//repeat('=', 78)
    end subroutine write_run_summary
+
+   !> The lines of one interface's state at the end (or of the model's one interface): peak
+   !! pressure, contact width, approach, total forces, slipping pairs; each label padded to
+   !! 22 characters with the indent so that the figures line up.
+   subroutine write_interface_lines(u, ind, s, peak_pair, peak, xy, width, nclosed, npair, area, &
+                                    approach, fn, ft, nslip)
+      integer, intent(in) :: u                      !! output unit
+      character(len=*), intent(in) :: ind           !! indent of the lines
+      type(run_summary_t), intent(in) :: s          !! for the units
+      integer, intent(in) :: peak_pair, nclosed, npair, nslip
+      real(dp), intent(in) :: peak, xy(2), width, area, approach, fn, ft
+      integer :: w
+      w = 22 - len(ind)
+      if (peak_pair > 0) then
+         write (u, '(a,es12.4,1x,a,a,i0,a,es12.4,a,es12.4,a)') ind//lab('peak pressure'), peak, &
+            s%stress_unit, ' at pair ', peak_pair, ' (', xy(1), ',', xy(2), ')'
+      else
+         write (u, '(a)') ind//lab('peak pressure')//' none: no pair is closed'
+      end if
+      write (u, '(a,es12.4,1x,a,a,i0,a,i0,a,es12.4,1x,a)') ind//lab('contact width'), width, &
+         s%length_unit, ' (', nclosed, ' of ', npair, ' pairs closed), area', area, &
+         s%length_unit//'2'
+      write (u, '(a,es12.4,1x,a)') ind//lab('approach'), approach, s%length_unit
+      write (u, '(a,es12.4,a,es12.4,1x,a)') ind//lab('total force normal'), fn, ', tangential', &
+         ft, s%force_unit
+      write (u, '(a,i0,a,i0,a)') ind//lab('slipping pairs')//' ', nslip, ' of ', nclosed, ' closed'
+   contains
+      pure function lab(t) result(r)
+         character(len=*), intent(in) :: t
+         character(len=w) :: r
+         r = t
+      end function lab
+   end subroutine write_interface_lines
 
    !> The a posteriori error estimate of the last step in one line (docs/history.md):
    !! " estimated discretization error 3.14 % (energy norm); contact zone 4.100E+00 mm wide

@@ -84,9 +84,53 @@ def estimate_line(s, t, prefix):
     return True
 
 
+class PerInterface:
+    """/summary as one interface's lines read it: the whole model's keys (peak_pressure,
+    force_normal, ...) taken from the interface_* arrays at index i, the units from /summary."""
+
+    SCALARS = (
+        "pairs",
+        "closed_pairs",
+        "slipping_pairs",
+        "peak_pair",
+        "peak_pressure",
+        "contact_width",
+        "contact_area",
+        "approach",
+        "force_normal",
+        "force_tangential",
+    )
+
+    def __init__(self, summary, i):
+        self.summary = summary
+        self.i = i
+
+    def __contains__(self, key):
+        if key == "peak_position":
+            return "interface_peak_x" in self.summary
+        if key in self.SCALARS:
+            return "interface_" + key in self.summary
+        return key in self.summary
+
+    def __getitem__(self, key):
+        if key == "peak_position":
+            return [
+                self.summary["interface_peak_x"][self.i],
+                self.summary["interface_peak_y"][self.i],
+            ]
+        if key in self.SCALARS:
+            return self.summary["interface_" + key][self.i]
+        return self.summary[key]
+
+    def get(self, key, default=None):
+        return self[key] if key in self else default
+
+
 def main(h5, lis):
     r = Result(h5)
-    s = r.summary
+    s = summary = r.summary
+    iface = None  # the interface whose lines follow (a model with several interfaces)
+    checked_ifaces = []
     if r.status.startswith("failed at set-up"):
         # no increment, no summary: the listing ends with the failure
         print(
@@ -191,10 +235,26 @@ def main(h5, lis):
             equal(f"stage {k + 1} solutions", int(m.group(4)), s["stage_solutions"][k])
             close(f"stage {k + 1} drift", m.group(5), s["stage_law_drift"][k], rel=6e-4)
             continue
-        m = re.match(r" The interface at the end \(increment (\d+)\):$", t)
+        m = re.match(r" The interfaces? at the end \(increment (\d+)\):$", t)
         if m:
             equal("increments", int(m.group(1)), s["increments"])
+            several = t.startswith(" The interfaces")
+            equal("several interfaces", several, len(need(s, "interface_pairs")) > 1)
+            iface = None
             continue
+        m = re.match(r"  interface (\d+)$", t)
+        if m:
+            iface = int(m.group(1)) - 1  # the lines of that interface follow, indented by 4
+            checked_ifaces.append(iface)
+            continue
+        indent = len(t) - len(t.lstrip(" "))
+        if iface is not None and indent == 4:
+            t = t[2:]  # an interface's line: its figures are the interface_* arrays' entries
+            s = PerInterface(summary, iface)
+        else:
+            if indent < 4:
+                iface = None
+            s = summary
         m = re.match(rf"  peak pressure\s+({NUM}) (.*) at pair (\d+) \(\s*({NUM}),\s*({NUM})\)$", t)
         if m:
             close("peak_pressure", m.group(1), need(s, "peak_pressure"))
@@ -364,6 +424,12 @@ def main(h5, lis):
     doubt_lines = [d for d in details if d != "@pret"]
     if doubt_lines:
         equal("doubt_details", "\n".join(doubt_lines), s.get("doubt_details", ""))
+    ipairs = list(summary.get("interface_pairs", ()))
+    if len(ipairs) > 1:
+        # several interfaces: each one with pairs has its lines, in the order of the deck
+        want = [i for i, n in enumerate(ipairs) if n > 0]
+        if checked_ifaces != want:
+            failures.append(f"interfaces listed {checked_ifaces}, with pairs {want}")
     if failures:
         for f in failures:
             print("FAIL:", f)

@@ -16,10 +16,11 @@ CONTACT_RUN = """ Nodes        : 1378   elements: 420   materials: 2
    inc  load factor     max |u|  closed  slip  solves rep   residual    time [s]
      1      0.05000           -      25     0       5   0  3.997E-16       1.432
      2      0.06203  9.5538E-03      25     3       4   1  4.296E-16       1.552
+     3     -0.50000  9.1100E-03      25     9       6   2  5.001E-16       1.690
  SUMMARY OF THE RUN (load stages follow the factor of load case 1)
   stage   increments      load factor from -> to  kind       solutions  worst drift
-      1      1 -     2    0.0000E+00 ->  1.0000E+00  loading            9    0.000E+00
- 9 solutions in 2 increments, 1.60 s
+      1      1 -     3    0.0000E+00 -> -5.0000E-01  loading           15    0.000E+00
+ 15 solutions in 3 increments, 1.70 s
 """
 BODY_RUN = """ Nodes        : 9   elements: 4   materials: 1
    inc  load factor     max |u|        sum Rx        sum Ry    time [s]
@@ -31,10 +32,11 @@ class Terminal(unittest.TestCase):
     def test_contact_run(self):
         t = terminal.parse_terminal(CONTACT_RUN)
         self.assertEqual((t["nodes"], t["equations"], t["pairs"]), (1378, 2625, 25))
-        self.assertEqual(t["progress"], [(1, 5, 1.432), (2, 4, 1.552)])   # not the summary's stage row
-        self.assertEqual(t["totals"], (9, 2))
-        self.assertEqual(terminal.progress_solutions(t), 9)
-        self.assertEqual(terminal.program_seconds(t), 1.60)
+        # not the summary's stage row; a negative load factor (a case reversed) is a progress line
+        self.assertEqual(t["progress"], [(1, 5, 1.432), (2, 4, 1.552), (3, 6, 1.690)])
+        self.assertEqual(t["totals"], (15, 3))
+        self.assertEqual(terminal.progress_solutions(t), 15)
+        self.assertEqual(terminal.program_seconds(t), 1.70)
 
     def test_run_without_contact(self):
         t = terminal.parse_terminal(BODY_RUN)

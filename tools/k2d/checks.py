@@ -67,8 +67,9 @@ class Check:
         for t in tok[1:k]:
             if "=" in t:
                 key, _, val = t.partition("=")
-                if key not in ("node", "at", "on", "pair", "x", "increment", "case"):
-                    self.fail("unknown selector %r (node=, at=, on=, pair=, x=, increment=, case=)" % key)
+                if key not in ("node", "at", "on", "pair", "x", "increment", "case", "interface"):
+                    self.fail("unknown selector %r (node=, at=, on=, pair=, x=, increment=, case=, "
+                              "interface=)" % key)
                 self.options[key] = val
             elif t in NODE_SETS + PAIR_SETS + REDUCTIONS:
                 self.flags.append(t)
@@ -281,6 +282,15 @@ def _pair_values(c, res, step):
     pos = res.contact.position
     lf = float(step.load_factor[0])
     sets = [f for f in c.flags if f in PAIR_SETS]
+    # interface=K: the pairs of the deck's K-th interface only (a model of several interfaces)
+    of_iface = np.ones(len(data), dtype=bool)
+    if "interface" in c.options:
+        k_if = int(c.options["interface"])
+        of_iface = np.asarray(res.contact.interface) == k_if
+        if not of_iface.any():
+            raise LookupError("interface %d has no pairs" % k_if)
+        if "pair" in c.options:
+            raise LookupError("interface= selects a set of pairs; pair=J names one already")
     if "pair" in c.options:
         j = int(c.options["pair"])
         if not 1 <= j <= len(data):
@@ -289,6 +299,7 @@ def _pair_values(c, res, step):
     elif "x" in c.options:
         x0 = float(c.options["x"])
         o = np.argsort(pos[:, 0])
+        o = o[of_iface[o]]
         xs = pos[o, 0]
         if not xs[0] - 1e-9 <= x0 <= xs[-1] + 1e-9:
             raise LookupError("x = %g lies outside the pairs (%g .. %g)" % (x0, xs[0], xs[-1]))
@@ -309,7 +320,7 @@ def _pair_values(c, res, step):
             ts = step.contact("tangential_state")
             mask = {"closed": ns > 0, "open": ns == 0, "slipping": (ns > 0) & (ts == 2),
                     "sticking": (ns > 0) & (ts == 0)}[which]
-        sel = np.where(mask)[0]
+        sel = np.where(mask & of_iface)[0]
         if c.quantity == "pairs":
             # a count: how many pairs are in the set
             return [float(len(sel))], [evaluate(c.expected, lf=lf)], ["%s pairs" % which]

@@ -17,8 +17,8 @@ import re
 __all__ = ["parse_terminal", "read_terminal", "progress_solutions", "program_seconds"]
 
 _NUM = r"[-+0-9.Ee]+"
-CONTACT_PROGRESS = re.compile(r"^\s*(\d+)\s+[0-9.]+\s+\S+\s+\d+\s+\d+\s+(\d+)\s+\d+\s+\S+\s+([0-9.]+)\s*$")
-BODY_PROGRESS = re.compile(r"^\s*(\d+)\s+[0-9.]+\s+\S+\s+%s\s+%s\s+([0-9.]+)\s*$" % (_NUM, _NUM))
+CONTACT_PROGRESS = re.compile(r"^\s*(\d+)\s+[-+0-9.]+\s+\S+\s+\d+\s+\d+\s+(\d+)\s+\d+\s+\S+\s+([0-9.]+)\s*$")
+BODY_PROGRESS = re.compile(r"^\s*(\d+)\s+[-+0-9.]+\s+\S+\s+%s\s+%s\s+([0-9.]+)\s*$" % (_NUM, _NUM))
 TOTALS = re.compile(r"^\s*(\d+) solutions in (\d+) increments(?:, ([0-9.]+) s)?")
 HEADER = {"nodes": re.compile(r"\s*Nodes\s*:\s*(\d+)"), "equations": re.compile(r"\s*Equations\s*:\s*(\d+)"),
           "pairs": re.compile(r"\s*Contact\s*:\s*(\d+) pairs")}
