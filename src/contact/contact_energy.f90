@@ -59,6 +59,8 @@ module contact_energy
       real(dp), allocatable :: lambda(:, :)         !! (ncase, 0:) load factors
       real(dp), allocatable :: hist(:, :, :)        !! (3, niface, 0:) cumulative dissipation,
                                                     !! sum F_T, mean u_T
+      logical, allocatable :: compliant(:)          !! (niface) a rough interface: tangential
+                                                    !! springs, its mean u_T a displacement
    end type energy_t
 
 contains
@@ -85,6 +87,8 @@ contains
       en%step(0) = 0
       en%lambda(:, 0) = lambda0
       en%hist(:, :, 0) = 0.0_dp
+      allocate (en%compliant(ni), source=.true.)
+      if (ni > 0) en%compliant = cdef%ifaces(1:ni)%law /= LAW_IDEAL
       if (en%active) en%start = st%s
    end subroutine energy_init
 
@@ -188,10 +192,16 @@ contains
             end do
          end associate
       end do
+      ! the ratios of an ideal interface are not defined (0): its sticking pairs do not move, so
+      ! its mean u_T is the slip of its slipping pairs alone, no displacement of the joint that
+      ! the total force works on (a bolt head's: loss factor 17.7, damping ratio 8.8 before)
+      allocate (tab%ratios_defined(ni), source=.true.)
+      if (allocated(en%compliant)) tab%ratios_defined = en%compliant
       do ic = 1, tab%ncycle
          do i = 1, ni
             tab%secant_stiffness(i, ic) = 0.0_dp
             tab%loss_factor(i, ic) = 0.0_dp
+            if (.not. tab%ratios_defined(i)) cycle
             if (tab%slip_amplitude(i, ic) > 0.0_dp) then
                tab%secant_stiffness(i, ic) = tab%force_amplitude(i, ic)/tab%slip_amplitude(i, ic)
             end if

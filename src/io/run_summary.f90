@@ -754,8 +754,14 @@ contains
       type(cycle_table_t), intent(in) :: tab
       type(run_summary_t) :: s
       real(dp), allocatable :: dn(:), dt(:)
+      logical, allocatable :: defined(:)
       integer :: i, ic
       call unit_names(m, s)
+      allocate (defined(size(cf%dissipated_energy)), source=.true.)
+      if (allocated(tab%ratios_defined)) then
+         defined(1:min(size(defined), size(tab%ratios_defined))) = &
+            tab%ratios_defined(1:min(size(defined), size(tab%ratios_defined)))
+      end if
       write (u, '(a)') ' Energy dissipated by the contact laws, cumulative ('//s%force_unit// &
             ' x '//s%length_unit//'):'
       call dissipation_parts(m, cf, dn, dt)
@@ -773,6 +779,13 @@ contains
             '  secant stiffness  loss factor  damping ratio'
          do ic = 1, tab%ncycle
             do i = 1, size(tab%energy, 1)
+               if (.not. defined(i)) then
+                  ! an ideal interface: the ratios of its mean slip are no joint's (contact.md)
+                  write (u, '(i7,i7,a,i6,i8,es12.4,es15.4,es16.4,a18,a13,a15)') ic, &
+                     tab%first(ic), ' -', tab%last(ic), i, tab%energy(i, ic), &
+                     tab%force_amplitude(i, ic), tab%slip_amplitude(i, ic), 'n/a', 'n/a', 'n/a'
+                  cycle
+               end if
                write (u, '(i7,i7,a,i6,i8,es12.4,es15.4,es16.4,es18.4,es13.4,es15.4)') ic, &
                      tab%first(ic), ' -', &
                   tab%last(ic), i, tab%energy(i, ic), tab%force_amplitude(i, ic), &
@@ -780,6 +793,9 @@ contains
                   tab%secant_stiffness(i, ic), tab%loss_factor(i, ic), tab%damping_ratio(i, ic)
             end do
          end do
+         if (.not. all(defined)) write (u, '(a)') '  (n/a: an ideal interface has no &
+            &tangential compliance; its mean u_T is its slipping pairs'' slip alone, no &
+            &displacement of the joint)'
       end if
    end subroutine write_dissipation
 

@@ -372,6 +372,26 @@ def main(h5, lis):
         if t.startswith("  cycle  increments"):
             continue
         m = re.match(
+            rf"\s+(\d+)\s+(\d+) -\s+(\d+)\s+(\d+)\s+({NUM})\s+({NUM})\s+({NUM})\s+n/a\s+n/a\s+n/a$",
+            t,
+        )
+        if m and ncyc:
+            # an ideal interface: its ratios are not defined, 0 in the file, ratios_defined 0
+            c, i = int(m.group(1)) - 1, int(m.group(4)) - 1
+            equal(f"cycle {c + 1} first", int(m.group(2)), cycles["first_increment"][c])
+            equal(f"cycle {c + 1} last", int(m.group(3)), cycles["last_increment"][c])
+            equal(f"interface {i + 1} ratios_defined", 0, int(need(cycles, "ratios_defined")[i]))
+            for g, key in zip(range(5, 8), ["energy", "force_amplitude", "slip_amplitude"]):
+                a = cycles[key]
+                close(
+                    f"cycle {c + 1} {key}",
+                    m.group(g),
+                    a[c, i] if a.shape[0] == len(cycles["first_increment"]) else a[i, c],
+                )
+            continue
+        if t.startswith("  (n/a: an ideal interface has no tangential compliance"):
+            continue
+        m = re.match(
             rf"\s+(\d+)\s+(\d+) -\s+(\d+)\s+(\d+)\s+({NUM})\s+({NUM})\s+({NUM})\s+({NUM})\s+({NUM})"
             rf"\s+({NUM})$",
             t,
@@ -380,6 +400,7 @@ def main(h5, lis):
             c, i = int(m.group(1)) - 1, int(m.group(4)) - 1
             equal(f"cycle {c + 1} first", int(m.group(2)), cycles["first_increment"][c])
             equal(f"cycle {c + 1} last", int(m.group(3)), cycles["last_increment"][c])
+            equal(f"interface {i + 1} ratios_defined", 1, int(need(cycles, "ratios_defined")[i]))
             for g, key in zip(
                 range(5, 11),
                 [

@@ -265,7 +265,8 @@ def plot_loops(h, pairs, out, units):
 
 def energy_points(path):
     """(slip amplitude, force amplitude, energy, loss factor) per cycle and interface of a result
-    file, each (ncycle, ninterface); None when the file has no /cycles (written before the
+    file, each (ncycle, ninterface), the loss factor NaN where it is not defined (an ideal
+    interface); None when the file has no /cycles (written before the
     program wrote them, or a history without a cycle)."""
     c = Result(path).cycles
     if not c or "energy" not in c:
@@ -274,7 +275,12 @@ def energy_points(path):
     e = get("energy")
     if e.shape[0] == 0:
         return None
-    return get("slip_amplitude"), get("force_amplitude"), e, get("loss_factor")
+    loss = get("loss_factor")
+    if "ratios_defined" in c:
+        # an ideal interface's loss factor is not defined (docs/contact.md): NaN, not its 0
+        defined = np.asarray(c["ratios_defined"]).astype(bool)
+        loss[:, ~defined[: loss.shape[1]]] = np.nan
+    return get("slip_amplitude"), get("force_amplitude"), e, loss
 
 
 def _log_ticks(axis, values):
