@@ -627,7 +627,7 @@ contains
       call write_real2(gid, 'loss_factor', tab%loss_factor, err)
       call write_real2(gid, 'damping_ratio', tab%damping_ratio, err)
       if (allocated(tab%ratios_defined)) then
-         call write_int1(gid, 'ratios_defined', merge(1, 0, tab%ratios_defined), err)
+         call write_int2(gid, 'ratios_defined', merge(1, 0, tab%ratios_defined), err)
       end if
       call h5gclose_f(gid, e)
       call keep(e, err)

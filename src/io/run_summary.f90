@@ -754,14 +754,8 @@ contains
       type(cycle_table_t), intent(in) :: tab
       type(run_summary_t) :: s
       real(dp), allocatable :: dn(:), dt(:)
-      logical, allocatable :: defined(:)
       integer :: i, ic
       call unit_names(m, s)
-      allocate (defined(size(cf%dissipated_energy)), source=.true.)
-      if (allocated(tab%ratios_defined)) then
-         defined(1:min(size(defined), size(tab%ratios_defined))) = &
-            tab%ratios_defined(1:min(size(defined), size(tab%ratios_defined)))
-      end if
       write (u, '(a)') ' Energy dissipated by the contact laws, cumulative ('//s%force_unit// &
             ' x '//s%length_unit//'):'
       call dissipation_parts(m, cf, dn, dt)
@@ -779,8 +773,8 @@ contains
             '  secant stiffness  loss factor  damping ratio'
          do ic = 1, tab%ncycle
             do i = 1, size(tab%energy, 1)
-               if (.not. defined(i)) then
-                  ! an ideal interface: the ratios of its mean slip are no joint's (contact.md)
+               if (.not. defined(i, ic)) then
+                  ! the ratios of its mean slip are no joint's (contact.md, "Load cycles")
                   write (u, '(i7,i7,a,i6,i8,es12.4,es15.4,es16.4,a18,a13,a15)') ic, &
                      tab%first(ic), ' -', tab%last(ic), i, tab%energy(i, ic), &
                      tab%force_amplitude(i, ic), tab%slip_amplitude(i, ic), 'n/a', 'n/a', 'n/a'
@@ -793,10 +787,19 @@ contains
                   tab%secant_stiffness(i, ic), tab%loss_factor(i, ic), tab%damping_ratio(i, ic)
             end do
          end do
-         if (.not. all(defined)) write (u, '(a)') '  (n/a: an ideal interface has no &
-            &tangential compliance; its mean u_T is its slipping pairs'' slip alone, no &
-            &displacement of the joint)'
+         if (allocated(tab%ratios_defined)) then
+            if (.not. all(tab%ratios_defined)) write (u, '(a)') '  (n/a: the interface''s pairs &
+               &do not move with its total force -- an ideal interface, or slips that cancel &
+               &in the sum, as under a normal load cycle: no stiffness or damping of one joint)'
+         end if
       end if
+   contains
+      !> The ratios of interface i in cycle ic are defined (a table without the flags: all).
+      pure logical function defined(i, ic)
+         integer, intent(in) :: i, ic
+         defined = .true.
+         if (allocated(tab%ratios_defined)) defined = tab%ratios_defined(i, ic)
+      end function defined
    end subroutine write_dissipation
 
    !> The energy dissipated by the contact laws on each interface, split into its normal

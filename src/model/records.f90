@@ -185,10 +185,11 @@ module records
                                                          !! 0 without slip
       real(dp), allocatable :: loss_factor(:, :)         !! (niface, ncycle) [-]; 0 where U = 0
       real(dp), allocatable :: damping_ratio(:, :)       !! (niface, ncycle) [-]
-      logical, allocatable :: ratios_defined(:)          !! (niface) the three ratios above mean
-                                                         !! something: a rough interface (an
-                                                         !! ideal one's mean u_T is its slipping
-                                                         !! pairs' slip alone: they are 0 there)
+      logical, allocatable :: ratios_defined(:, :)       !! (niface, ncycle) the three ratios
+                                                         !! above mean something: a rough
+                                                         !! interface whose energy fits in its
+                                                         !! (sum F_T, mean u_T) loop's rectangle
+                                                         !! 4 F_amp u_amp (0 where not)
    end type cycle_table_t
 
    !> What a run uses, for the header of the listing and the terminal and the

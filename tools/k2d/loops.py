@@ -266,7 +266,7 @@ def plot_loops(h, pairs, out, units):
 def energy_points(path):
     """(slip amplitude, force amplitude, energy, loss factor) per cycle and interface of a result
     file, each (ncycle, ninterface), the loss factor NaN where it is not defined (an ideal
-    interface); None when the file has no /cycles (written before the
+    interface, or slips that do not follow the total force); None when the file has no /cycles (written before the
     program wrote them, or a history without a cycle)."""
     c = Result(path).cycles
     if not c or "energy" not in c:
@@ -277,9 +277,10 @@ def energy_points(path):
         return None
     loss = get("loss_factor")
     if "ratios_defined" in c:
-        # an ideal interface's loss factor is not defined (docs/contact.md): NaN, not its 0
-        defined = np.asarray(c["ratios_defined"]).astype(bool)
-        loss[:, ~defined[: loss.shape[1]]] = np.nan
+        # where the loss factor is not defined (docs/contact.md, "Load cycles"): NaN, not its 0
+        defined = np.atleast_2d(np.asarray(c["ratios_defined"])).astype(bool)
+        if defined.shape == loss.shape:
+            loss[~defined] = np.nan
     return get("slip_amplitude"), get("force_amplitude"), e, loss
 
 
