@@ -662,7 +662,7 @@ contains
       integer, allocatable :: ie_a(:), ik_a(:), ie_b(:), ik_b(:), nodes_a(:)
       real(dp), allocatable :: area(:), lenv(:), share(:)
       logical, allocatable :: paired(:)
-      character(len=:), allocatable :: msg, list
+      character(len=:), allocatable :: msg, list, hint
       type(contact_pair_t) :: p
       type(contact_pair_t), allocatable :: new(:)
       integer :: ka, k, np0, nbad, outcome, nnew
@@ -715,12 +715,15 @@ contains
       pairs = [pairs, new(1:nnew)]
       if (nbad > 0) then
          if (nbad > 20) list = list//' ...'
+         hint = ''
+         if (s%law%rigid <= 0) hint = '; surface A must lie within the extent of B: name only &
+            &the part of A that faces B, or make the shorter surface A (the pairs'' normal &
+            &follows B, whichever body is on top)'
          call errors%add('E-UNMATCHED', 'CONTACT: interface '//itoa(iface)//': '//itoa(nbad)// &
                          ' node(s) of surface A do not face '// &
                          trim(merge('the rigid profile', 'surface B        ', s%law%rigid > 0))// &
                          ' (their projection falls beyond its ends by more than '//rtoa(tol)// &
-                         '):'//list, &
-                         file=file, line=s%surf(1)%line)
+                         '):'//list//hint, file=file, line=s%surf(1)%line)
          return
       end if
       if (.not. facing(m, s, iface, ie_a, ik_a, pairs(np0 + 1:), file, errors)) return
