@@ -290,6 +290,37 @@ class ContactLayer(unittest.TestCase):
             else:
                 self.assertGreater(off, 0)
 
+    def test_failed_layer_meshed_again_without(self):
+        # gmsh crashing on the layer (gmsh 4.8's algorithm 8 segfaults on hertz_adapt.geo, with
+        # and without a layer): the mesh is made again without the layer, the layers handed in
+        # are emptied (the route then reports no layer for that mesh) and gmsh's log of the
+        # failure is kept beside the new one.  The crash is simulated: every gmsh run whose
+        # .geo asks for a BoundaryLayer field exits with a segmentation fault's -11.
+        work = tempfile.mkdtemp(prefix="adapt_layer_", dir=os.environ.get("K2D_TEST_WORK"))
+        self.addCleanup(shutil.rmtree, work, ignore_errors=True)
+        geo = os.path.join(ROOT, "inputs", "adapt", "hertz_adapt.geo")
+        real = ad.run_cpu
+        calls = []
+
+        def crash_on_layer(cmd, log, cwd=None):
+            with open(cmd[4]) as f:
+                layered = "BoundaryLayer" in f.read()
+            calls.append(layered)
+            if layered:
+                with open(log, "w") as f:
+                    f.write("Segmentation fault\n")
+                return -11, 0.0, 0.0
+            return real(cmd, log, cwd)
+        ad.run_cpu = crash_on_layer
+        self.addCleanup(setattr, ad, "run_cpu", real)
+        layers = [{"curves": [1, 2], "sizes": {1: 0.2, 2: 0.3, 3: 3.0}, "depth": 0.8}]
+        msh = os.path.join(work, "next.msh")
+        ad.gmsh_mesh(geo, msh, msh + ".log", layers=layers)
+        self.assertEqual(calls, [True, False])
+        self.assertEqual(layers, [])
+        self.assertTrue(os.path.isfile(msh + ".log.layer"))
+        self.assertGreater(am.quality(msh)["elements"], 100)
+
 
 if __name__ == "__main__":
     unittest.main()
