@@ -3,7 +3,7 @@
 
     tools/adapt.py DECK --target 0.01 [--max-dofs N] [-o DIR] [--exe KONTAKT2D]
                    [--uniform] [--compare] [--max-steps N] [--max-growth G] [--no-singular]
-                   [--uniform-contact]
+                   [--uniform-contact] [--contact-layer]
 
 A deck with a MESH block whose .geo lies beside its .msh is remeshed by gmsh: adaptively, from
 a size field made of the error indicators of the last run (the program's `error_indicator`
@@ -50,6 +50,9 @@ def main(argv=None):
     ap.add_argument("--uniform-contact", action="store_true",
                     help="adaptive: one size along each curved contact zone, the smallest the "
                     "indicators ask there (docs/adaptivity.md: measured, no gain on Hertz)")
+    ap.add_argument("--contact-layer", action="store_true",
+                    help="adaptive: a boundary layer of quadrilaterals along curved contact zones, "
+                    "its first layer the local size (docs/adaptivity.md)")
     ap.add_argument("--no-singular", action="store_true",
                     help="adaptive: no singular rate at the contact's singular edges "
                     "(docs/adaptivity.md)")
@@ -77,7 +80,8 @@ def main(argv=None):
             rows = ad.adapt_mesh_deck(args.deck, args.target, args.max_dofs, out, exe, uniform=args.uniform,
                                       max_steps=args.max_steps, max_growth=args.max_growth or None,
                                       singular=not args.no_singular,
-                                      uniform_contact=args.uniform_contact)
+                                      uniform_contact=args.uniform_contact,
+                                      contact_layer=args.contact_layer)
             if args.compare and not args.uniform:
                 rows += ad.adapt_mesh_deck(args.deck, args.target, args.max_dofs, out, exe, uniform=True,
                                            max_steps=args.max_steps)

@@ -3,7 +3,8 @@
 
     tools/adapt_validation.py [--runs DIR] [--reuse] [--target T] [--max-dofs 100000]
                               [--md FILE] [--png FILE] [--exe KONTAKT2D]
-                              [--growth G ...] [--growth-max-dofs 20000] [--scatter]
+                              [--growth G ...] [--growth-max-dofs 20000] [--contact-layer]
+                              [--no-reference] [--scatter]
 
 runs `tools/adapt.py DECK --compare` (adaptive against uniform remeshing) on the two decks of
 inputs/adapt/ and measures every mesh of both sequences against the closed forms:
@@ -188,13 +189,13 @@ def slope(N, e):
     return float(math.log(e[-1] / e[0]) / math.log(N[-1] / N[0]))
 
 
-def study(name, runs, target, max_dofs, exe, reuse):
+def study(name, runs, target, max_dofs, exe, reuse, extra=(), reference=True):
     deck = os.path.join(ROOT, "inputs", "adapt", name + ".dat")
     out = os.path.join(runs, name)
     if not reuse or not os.path.isfile(os.path.join(out, name + "_adapt.csv")):
         subprocess.call([sys.executable, os.path.join(ROOT, "tools", "adapt.py"), deck, "--target",
                          str(target or CASES[name]["target"]),
-                         "--compare", "--max-dofs", str(max_dofs), "-o", out, "--exe", exe])
+                         "--compare", "--max-dofs", str(max_dofs), "-o", out, "--exe", exe] + list(extra))
     with open(os.path.join(out, name + "_adapt.csv")) as f:
         rows = list(csv.DictReader(f))
     mats = ad.deck_materials(deck)
@@ -220,7 +221,7 @@ def study(name, runs, target, max_dofs, exe, reuse):
                 Uinf2, C2, q2 = extrapolate([r["dofs"] for r in ada[-3:]], [r["U2"] for r in ada[-3:]])
             except ValueError as e:     # the last adaptive meshes too alike in size to fit a rate
                 print("adapt_validation: %s: no second reference (%s)" % (name, e), file=sys.stderr)
-    if case.get("reference"):
+    if case.get("reference") and reference:
         fine, prev, frow, prow = REF_CACHE.get(case["reference"]) or reference_fields(case["reference"], runs, exe,
                                                                                      reuse)
         REF_CACHE[case["reference"]] = (fine, prev, frow, prow)
@@ -384,7 +385,7 @@ def stays_within(rows, tol):
     return None
 
 
-def growth_study(name, runs, growth, max_dofs, exe, reuse, uniform_rows, tol):
+def growth_study(name, runs, growth, max_dofs, exe, reuse, uniform_rows, tol, extra=()):
     """The adaptive route of `name` with at most `growth` times the elements per step (a finer
     sampling of its DOF axis than the default 4, which makes the measure's error fall by 5 - 30
     in one step), up to max_dofs: per mesh the DOFs, the estimate and the measure's error; the
@@ -397,7 +398,7 @@ def growth_study(name, runs, growth, max_dofs, exe, reuse, uniform_rows, tol):
     if not reuse or not os.path.isfile(csv_path):
         subprocess.call([sys.executable, os.path.join(ROOT, "tools", "adapt.py"), deck, "--target",
                          str(case["target"]), "--max-growth", str(growth), "--max-dofs", str(max_dofs),
-                         "--max-steps", "12", "-o", out, "--exe", exe])
+                         "--max-steps", "12", "-o", out, "--exe", exe] + list(extra))
     with open(csv_path) as f:
         rows = list(csv.DictReader(f))
     exact = case["exact"]()
@@ -592,6 +593,12 @@ def main(argv=None):
                     help="also run the adaptive route with at most this growth of the elements per step "
                     "(e.g. 1.5), up to --growth-max-dofs, for the DOFs to --tol")
     ap.add_argument("--growth-max-dofs", type=int, default=20000)
+    ap.add_argument("--contact-layer", action="store_true",
+                    help="the adaptive routes with tools/adapt.py --contact-layer (the references and "
+                    "the uniform routes as they are)")
+    ap.add_argument("--no-reference", action="store_true",
+                    help="no true errors against the overkill references (their fits to every Gauss "
+                    "point of every mesh take most of the time): the ratios and the measures only")
     ap.add_argument("--scatter", action="store_true",
                     help="only the study of the peak pressure's scatter: Hertz at one contact spacing, "
                     "three spacing ratios of the surfaces, three gmsh algorithms (docs/adaptivity.md)")
@@ -607,10 +614,13 @@ def main(argv=None):
         else:
             print(text)
         return 0
-    studies = [study(n, args.runs, args.target, args.max_dofs, exe, args.reuse) for n in args.cases]
+    extra = ["--contact-layer"] if args.contact_layer else []
+    studies = [study(n, args.runs, args.target, args.max_dofs, exe, args.reuse, extra, not args.no_reference)
+               for n in args.cases]
     text = report(studies, args.tol)
     if args.growth:
-        gs = [growth_study(s["name"], args.runs, g, args.growth_max_dofs, exe, args.reuse, s["uni"], args.tol)
+        gs = [growth_study(s["name"], args.runs, g, args.growth_max_dofs, exe, args.reuse, s["uni"], args.tol,
+                           extra)
               for g in args.growth for s in studies]
         text += "\n#### The adaptive route sampled more finely (--max-growth)\n\n" + growth_report(gs, args.tol)
     if args.md:

@@ -937,6 +937,71 @@ def contact_spacing(result, nodal, margin=CONTACT_MARGIN):
     return nodal, changed
 
 
+def view_sizes(result, hnew, uniform_contact=False):
+    """The nodal sizes of the size view: the smallest of the sizes `hnew` wanted by the elements
+    around each node, with `uniform_contact` one size along each curved contact zone
+    (contact_spacing), and surface A the finer side (interface_sizes)."""
+    m = result.mesh
+    nn = m.element_nodes
+    nodal = np.full(len(m.coordinates), np.inf)
+    for k in range(4):
+        valid = (nn != 3) | (k < 3)
+        np.minimum.at(nodal, m.connectivity[valid, k] - 1, hnew[valid])
+    if uniform_contact:
+        nodal = contact_spacing(result, nodal)[0]
+    return interface_sizes(result, nodal)
+
+
+def contact_layers(result, nodal, msh, first=None, depth=None):
+    """The boundary layers of quadrilaterals of the next mesh (k2d.adapt_mesh.layer_lines) along
+    the curved contact zones (curved_contact_zones: the curved interfaces without a singular
+    edge): per body, the curves of `msh` (the .msh the result was computed on; the next mesh is
+    made from the same .geo) that hold a node of a zone's pairs (node a or a node of surface B
+    under it), carried on along straight or tangent continuations to a corner
+    (am.layer_chain); the first thickness at each end point of the curves `first` times the
+    view's size `nodal` at the nearest node of the result's mesh, the layer's depth `depth`
+    times the smallest of them on the contact curves.  Returns [{"curves", "sizes", "depth"}]
+    (empty without a curved zone or when the bodies of `msh` do not match the result's)."""
+    first = am.LAYER_FIRST if first is None else first
+    depth = am.LAYER_DEPTH if depth is None else depth
+    zones = curved_contact_zones(result)
+    if not zones or msh is None:
+        return []
+    c = result.contact
+    xy = result.mesh.coordinates
+    nodes = set()
+    for _itf, pairs in zones:
+        for j in pairs:
+            nodes.add(int(c.node_a[j]) - 1)
+            nodes.update(_pair_b_nodes(c, j))
+    zone_xy = xy[sorted(n for n in nodes if 0 <= n < len(xy))]
+    if not len(zone_xy):
+        return []
+    topo = am.msh_topology(msh)
+    bodies = am.msh_bodies(msh)
+    tol = 1e-9 * float(np.ptp(xy, axis=0).max() or 1.0)
+    seeds = []
+    for curve, inner in topo["curve_nodes"].items():
+        if len(inner) and any(np.min(np.hypot(*(zone_xy - q).T)) <= tol for q in inner):
+            seeds.append(curve)
+    out = []
+    for body in bodies:
+        mine = [cv for cv in seeds if cv in body["curves"]]
+        if not mine:
+            continue
+        curves, points = am.layer_chain(topo, mine, body["curves"])
+        sizes = {}
+        for p in points:
+            i = int(np.argmin(np.hypot(*(xy - topo["points"][p]).T)))
+            if np.isfinite(nodal[i]):
+                sizes[p] = first * float(nodal[i])
+        contact_points = {p for cv in mine for p in topo["curves"].get(cv, ()) if p in sizes}
+        if not contact_points:
+            continue
+        out.append({"curves": curves, "sizes": sizes, "depth": depth * min(sizes[p] for p in contact_points)})
+    return out
+
+
 def write_size_view(path, result, hnew, msh=None, uniform_contact=False):
     """A gmsh post-processing view (.pos) of the sizes at the corners of the current mesh: the
     smallest of the sizes wanted by the elements around each node, with ghost cells beyond the
@@ -953,13 +1018,7 @@ def write_size_view(path, result, hnew, msh=None, uniform_contact=False):
     m = result.mesh
     xy = m.coordinates
     nn = m.element_nodes
-    nodal = np.full(len(xy), np.inf)
-    for k in range(4):
-        valid = (nn != 3) | (k < 3)
-        np.minimum.at(nodal, m.connectivity[valid, k] - 1, hnew[valid])
-    if uniform_contact:
-        nodal = contact_spacing(result, nodal)[0]
-    nodal = interface_sizes(result, nodal)
+    nodal = view_sizes(result, hnew, uniform_contact)
     cells = [m.connectivity[e, :3 if nn[e] == 3 else 4] - 1 for e in range(len(nn))]
     bodies = am.msh_bodies(msh) if msh else None
     which = am.match_bodies(xy, cells, bodies) if bodies else None
@@ -983,12 +1042,15 @@ def write_size_view(path, result, hnew, msh=None, uniform_contact=False):
     return [(b["surfaces"], b["curves"], b["points"]) for b in bodies]
 
 
-def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh", restrict=None):
+def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh", restrict=None, layers=None):
     """Mesh `geo` into `msh` (format 4.1) with the sizes of the view `pos` as the only size
     field, or with the .geo's own sizes times `factor`; returns the CPU seconds of gmsh.  With
     `restrict` (write_size_view's entity lists) `pos` holds one view per body: the inside of a
     body's surfaces is meshed from its own view, the curves and points from the smallest size
-    of the views that cover them."""
+    of the views that cover them.  With `layers` (contact_layers) boundary layers of
+    quadrilaterals along those curves; should gmsh fail with them (it crashed with other 2-D
+    algorithms on Hertz's .geo) the mesh is made again without them and `layers` emptied, so
+    the caller sees that the mesh has none."""
     if shutil.which(gmsh) is None:
         raise AdaptError("gmsh is needed to remesh %s (Debian package gmsh)" % geo)
     wrapper = os.path.splitext(msh)[0] + "_mesh.geo"
@@ -1021,18 +1083,37 @@ def gmsh_mesh(geo, msh, log, pos=None, factor=None, gmsh="gmsh", restrict=None):
                 mins += [fr, fb]
             lines += ["Field[99000] = Min;", "Field[99000].FieldsList = {%s};" % ", ".join(map(str, mins)),
                       "Background Field = 99000;"]
+    cpu = 0.0
+    if layers:
+        with open(wrapper, "w") as f:
+            f.write("\n".join(lines + am.layer_lines(layers)) + "\n")
+        if os.path.isfile(msh):
+            os.remove(msh)
+        rc, wall, cpu = run_cpu([gmsh, "-2", "-format", "msh41", wrapper, "-o", msh], log)
+        if rc == 0 and os.path.isfile(msh):
+            return cpu + _check_types(msh, geo)
+        with open(log, "a") as f:
+            f.write("\n(the contact layer failed, exit code %d: meshed again without it)\n" % rc)
+        layers.clear()
+        os.rename(log, log + ".layer")
     with open(wrapper, "w") as f:
         f.write("\n".join(lines) + "\n")
-    rc, wall, cpu = run_cpu([gmsh, "-2", "-format", "msh41", wrapper, "-o", msh], log)
+    rc, wall, cpu1 = run_cpu([gmsh, "-2", "-format", "msh41", wrapper, "-o", msh], log)
+    cpu += cpu1
     if rc != 0 or not os.path.isfile(msh):
         raise AdaptError("gmsh failed on %s (exit code %d; its output: %s)" % (wrapper, rc, log))
+    return cpu + _check_types(msh, geo)
+
+
+def _check_types(msh, geo):
+    """0.0, or AdaptError when gmsh made elements of `msh` the program does not read."""
     bad = {t: n for t, n in msh_element_types(msh).items() if t not in MSH_SURFACE_TYPES_READ}
     if bad:
         what = ", ".join("%d elements of gmsh type %d" % (n, t) for t, n in sorted(bad.items()))
         raise AdaptError("%s: gmsh made %s from %s, which kontakt2d does not read (it reads 3- and "
                          "4-node, 8- and 9-node elements; docs/adaptivity.md, \"Quadratic meshes\")"
                          % (msh, what, geo))
-    return cpu
+    return 0.0
 
 
 # gmsh's 2-D element types kontakt2d reads: 3-node triangle, 4-node quadrilateral, 8- and 9-node
@@ -1068,13 +1149,14 @@ MAX_GROWTH = 4.0      # elements of an adaptive mesh over the last one's, at mos
 
 
 def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8, log=print,
-                    max_growth=MAX_GROWTH, singular=True, uniform_contact=False):
+                    max_growth=MAX_GROWTH, singular=True, uniform_contact=False, contact_layer=False):
     """Remesh the .geo of a MESH deck until the estimated error is below `target` or the next
     mesh would exceed `max_dofs`: adaptively from the indicators (a size field; each mesh at most
     about `max_growth` times the elements of the last, None: no limit; with `singular` the
     contact's singular edges refined at their own rate, singular_rates; with `uniform_contact` a
-    uniform spacing along curved contact zones, contact_spacing), or with uniform=True by
-    halving the .geo's sizes at each step.  Returns the rows of the table."""
+    uniform spacing along curved contact zones, contact_spacing; with `contact_layer` a boundary
+    layer of quadrilaterals along them, contact_layers), or with uniform=True by halving the
+    .geo's sizes at each step.  Returns the rows of the table."""
     kind, msh, geo = deck_kind(deck)
     if kind != "mesh" or geo is None:
         raise AdaptError("%s: a MESH deck with the .geo of its mesh beside it is needed for remeshing" % deck)
@@ -1085,12 +1167,12 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
     os.makedirs(wdir, exist_ok=True)
     with open(deck) as f:
         text = f.read()
-    rows, pos, restrict = [], None, None
+    rows, pos, restrict, layers = [], None, None, []
     r = hnew = r_msh = None         # the last result, its new sizes and its .msh (from step 1 on)
     for k in range(max_steps):
         base = os.path.join(wdir, "%s_%02d" % (name, k))
         cpu_mesh = gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos,
-                             factor=0.5 ** k if uniform else None, restrict=restrict)
+                             factor=0.5 ** k if uniform else None, restrict=restrict, layers=layers)
         # the predicted size of a mesh is approximate: one that came out beyond the budget, or
         # beyond 1.25 times the growth allowed, is made again with all sizes grown by the excess
         # (at most four times)
@@ -1107,7 +1189,10 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
                 break
             hnew *= math.sqrt(dofs / want)
             restrict = write_size_view(pos, r, hnew, msh=r_msh, uniform_contact=uniform_contact)
-            cpu_mesh += gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos, restrict=restrict)
+            if contact_layer:
+                layers = contact_layers(r, view_sizes(r, hnew, uniform_contact), r_msh)
+            cpu_mesh += gmsh_mesh(geo, base + ".msh", base + "_gmsh.log", pos=pos, restrict=restrict,
+                                  layers=layers)
         if max_dofs and 2 * msh_nodes(base + ".msh") > max_dofs:
             rows[-1]["stop"] = "budget"
             break
@@ -1122,6 +1207,7 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
         shape = am.quality(base + ".msh", limit=am.ANGLE_LIMIT)
         row["max_angle"] = max(v for v in (shape["max_angle_quad"], shape["max_angle_tri"]) if math.isfinite(v))
         row["quads_over_limit"] = shape["over_limit"]
+        row["layer_curves"] = sum(len(lay["curves"]) for lay in layers)
         rows.append(row)
         log("  %s step %d: %d DOFs, estimated error %.4g (%s), CPU %.2f s; largest angle %.1f deg%s"
             % (tag, k, row["dofs"], est, source, cpu, row["max_angle"],
@@ -1147,6 +1233,8 @@ def adapt_mesh_deck(deck, target, max_dofs, out, exe, uniform=False, max_steps=8
         pos = base + "_size.pos"
         r_msh = base + ".msh"
         restrict = write_size_view(pos, r, hnew, msh=r_msh, uniform_contact=uniform_contact)
+        if contact_layer:
+            layers = contact_layers(r, view_sizes(r, hnew, uniform_contact), r_msh)
         row["cpu_mesh"] += time.process_time() - t0
     return rows
 
@@ -1210,6 +1298,7 @@ def richardson_table(rows):
 COLUMNS = ["method", "step", "elements", "dofs", "estimated_error", "source", "cpu_solve", "cpu_mesh",
            "cpu_cumulative", "peak_pressure", "width", "approach", "von_mises", "slip_share", "scheme",
            "law_drift", "residual", "traction_limited", "singular_elements", "max_angle", "quads_over_limit",
+           "layer_curves",
            "exit", "not_converging"]
 
 

@@ -223,3 +223,116 @@ def match_bodies(xy, cells, bodies):
             return None
         which[k] = cand[0]
     return np.array([which[c] for c in comp], dtype=int)
+
+
+# ------------------------------------------------------------------ a layer along contact curves
+# A boundary layer of quadrilaterals along a curved contact (docs/adaptivity.md, "A layer along
+# the contact"): gmsh's BoundaryLayer field builds a column of nodes normal to the curve at every
+# node of its 1-D mesh, the first at the distance hWall, the next ones growing by LAYER_RATIO
+# until LAYER_DEPTH times the smallest hWall; hWall is given at the curves' end points (the
+# field's SizesList) and gmsh 4.8 interpolates it along a curve quadratically between them.
+# Where the layer ends on a point whose next curve continues the layer's curve (a tangent or
+# collinear continuation) gmsh takes that curve's nodes for the end column, which lies along
+# the boundary and makes quadrilaterals near 180 degrees; the layer is therefore carried on
+# along such continuations to a corner (a turn of at least LAYER_CORNER degrees).
+LAYER_FIRST = 1.0       # the first layer's thickness over the size of the view at the point
+LAYER_RATIO = 1.15      # growth of the layers' thickness
+LAYER_DEPTH = 4.0       # the layer's depth over the smallest first thickness of its curves
+LAYER_CORNER = 45.0     # a turn of the boundary [deg] that ends the layer
+
+
+def msh_topology(path):
+    """The geometry of a .msh file (format 4.1, ASCII) the layer needs: {"points": {tag: xy},
+    "curves": {tag: (begin point, end point)}, "curve_nodes": {tag: xy of the curve's inner
+    nodes, k x 2}}."""
+    points, curves, nodes = {}, {}, {}
+    with open(path) as f:
+        for line in f:
+            tag = line.strip()
+            if tag == "$Entities":
+                npt, ncu, _nsu, _nvo = (int(v) for v in f.readline().split())
+                for _ in range(npt):
+                    v = f.readline().split()
+                    points[int(v[0])] = np.array([float(v[1]), float(v[2])])
+                for _ in range(ncu):
+                    v = f.readline().split()
+                    nphys = int(v[7])
+                    nb = int(v[8 + nphys])
+                    b = [abs(int(t)) for t in v[9 + nphys:9 + nphys + nb]]
+                    curves[int(v[0])] = tuple(b)
+            elif tag == "$Nodes":
+                nblocks = int(f.readline().split()[0])
+                for _ in range(nblocks):
+                    dim, ent, _param, n = (int(v) for v in f.readline().split())
+                    for _ in range(n):
+                        f.readline()
+                    xy = np.array([[float(c) for c in f.readline().split()[:2]] for _ in range(n)])
+                    if dim == 1:
+                        nodes[ent] = xy.reshape(-1, 2)
+                break
+    return {"points": points, "curves": curves, "curve_nodes": nodes}
+
+
+def _leaving(topo, curve, point):
+    """The unit direction in which `curve` leaves `point` (towards its nearest inner node, or its
+    other end point when it has no inner node)."""
+    p = topo["points"][point]
+    inner = topo["curve_nodes"].get(curve)
+    if inner is not None and len(inner):
+        q = inner[int(np.argmin(np.hypot(*(inner - p).T)))]
+    else:
+        ends = [e for e in topo["curves"][curve] if e != point]
+        q = topo["points"][ends[0]] if ends else p
+    d = q - p
+    n = float(np.hypot(d[0], d[1]))
+    return d / n if n > 0.0 else d
+
+
+def layer_chain(topo, seeds, body_curves, corner=LAYER_CORNER):
+    """The curves of a layer: `seeds` (the contact curves) and, from each end of the chain they
+    form, the body's next curve as long as it continues the last one within `corner` degrees
+    (a turn below it: the layer's end column would lie along the boundary).  Returns (curves,
+    their end points), sorted."""
+    curves = set(seeds)
+    body_curves = set(body_curves)
+    grown = True
+    while grown:
+        grown = False
+        count = {}
+        for c in curves:
+            for p in topo["curves"].get(c, ()):
+                count[p] = count.get(p, 0) + 1
+        for p, n in count.items():
+            if n != 1:
+                continue                                # inside the chain
+            last = [c for c in curves if p in topo["curves"].get(c, ())][0]
+            nxt = [c for c in body_curves - curves if p in topo["curves"].get(c, ())]
+            if len(nxt) != 1:
+                continue
+            # the turn between the two curves at p: 0 for a straight continuation
+            turn = 180.0 - math.degrees(math.acos(float(np.clip(_leaving(topo, last, p)
+                                                                @ _leaving(topo, nxt[0], p), -1.0, 1.0))))
+            if turn < corner:
+                curves.add(nxt[0])
+                grown = True
+                break
+    points = sorted({p for c in curves for p in topo["curves"].get(c, ())})
+    return sorted(curves), points
+
+
+def layer_lines(layers, first_field=99100):
+    """The .geo lines of gmsh BoundaryLayer fields, one per layer {"curves", "sizes": {point:
+    first thickness}, "depth"}, each made a boundary layer of the mesh."""
+    lines = []
+    for k, lay in enumerate(layers):
+        f = first_field + k
+        sizes = ", ".join("%d, %.8g" % (p, h) for p, h in sorted(lay["sizes"].items()))
+        lines += ["Field[%d] = BoundaryLayer;" % f,
+                  "Field[%d].CurvesList = {%s};" % (f, ", ".join(map(str, lay["curves"]))),
+                  "Field[%d].SizesList = {%s};" % (f, sizes),
+                  "Field[%d].Size = %.8g;" % (f, min(lay["sizes"].values())),
+                  "Field[%d].Ratio = %.8g;" % (f, lay.get("ratio", LAYER_RATIO)),
+                  "Field[%d].Thickness = %.8g;" % (f, lay["depth"]),
+                  "Field[%d].Quads = 1;" % f,
+                  "BoundaryLayer Field = %d;" % f]
+    return lines
