@@ -7,7 +7,7 @@
 gmsh's recombination of a steeply graded triangulation can leave quadrilaterals with an interior
 angle near 180 degrees; the error concentrates in them and the recovery estimate under-rates it
 (an effectivity of 0.61 on a Hertz model).  The remeshing route measures every mesh it makes
-with these helpers and reports the worst angle in its table.
+with these functions and reports the worst angle in its table.
 """
 import math
 
