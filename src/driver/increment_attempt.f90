@@ -570,14 +570,18 @@ contains
    !! displacement in the deck) whose Newton iteration on the laws converges
    !! only linearly: a solution that changed no mode and left more than a
    !! quarter of the out-of-balance force it started from (a quadratic step
-   !! leaves far less), every closed rough pair on its unloading branch.  That
+   !! leaves far less), or one after which a pair was frozen by the guard
+   !! against chatter; every closed rough pair on its unloading branch.  That
    !! is the approach of the pairs to their zero-force points, where the
    !! branch's tangent vanishes (docs/contact.md, "A stack held only by its
    !! contact"): the pairs on their unloading branches are given their rest
    !! springs (contact_algorithm's start_rest; rest = 1), once an increment.
    !! While every closed pair is a rest pair the system is linear, so a
    !! solution that balances the force is exact: its correction is not tested
-   !! against TOLU (dnorm = 0).
+   !! against TOLU (dnorm = 0), and the active set (rest_active_set) is updated
+   !! after every solution, not only the balanced ones: a change costs one
+   !! solution, not two (the newly closed pairs' force-free K_T leave 1e-9 of
+   !! the force after the solution that closed them).
    subroutine rest_start(an, m, st, fext_new, fscale, rpred, rvec, rhs, changed, att, rprev, iter, &
                          rest, again, need_matrix, dnorm)
       type(analysis_t), intent(in) :: an
@@ -598,9 +602,20 @@ contains
             linear = linear .and. (st%md(j)%rest .or. .not. st%md(j)%closed)
          end do
          if (linear .and. att%rnorm <= att%rtol) dnorm = 0.0_dp
+         ! (linear: the active set from every solution, the forces judged beyond what the
+         ! solution leaves out of balance; the balanced solution checks it once more)
+         if (linear) then
+            call rest_active_set(m%contact, st, max(att%rtol, att%rnorm)*fscale, changed)
+            if (any(changed)) then
+               call changed_modes(an, m, st, fscale, rpred, rvec, rhs, changed, att)
+               att%repeats = att%repeats + 1
+               again = .true.
+               need_matrix = .true.
+            end if
+         end if
       end if
-      if (rest /= 0 .or. again .or. iter < 2 .or. st%has_ideal) return
-      if (.not. (att%rnorm > att%rtol .and. att%rnorm > 0.25_dp*rprev)) return
+      if (rest /= 0 .or. (again .and. .not. st%chatter) .or. iter < 2 .or. st%has_ideal) return
+      if (.not. (att%rnorm > att%rtol .and. (att%rnorm > 0.25_dp*rprev .or. st%chatter))) return
       if (maxval([0.0_dp, abs(fext_new)]) > 1.0e-12_dp*an%force_scale) return
       if (maxval([0.0_dp, abs(an%ucase)]) > 0.0_dp) return
       do k = 1, size(st%rough)
