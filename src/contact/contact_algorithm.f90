@@ -28,6 +28,7 @@ module contact_algorithm
                             tangential_drift
    use contact_rough_pair, only: rough_outcome_t, evaluate_rough_pair, touching_band
    use contact_ideal_pair, only: evaluate_ideal, augment_multipliers, early_update
+   use contact_laws, only: normal_pressure, tangential_stiffness
    implicit none
    private
 
@@ -38,9 +39,16 @@ module contact_algorithm
              start_force_normal, frozen_pairs, tangential_drift, drop_regularisation, &
              regularise_slip, &
              anchor_regularisation, release_anchors, settle_frozen, open_held_tension, &
-             hold_at_rest
+             hold_at_rest, start_rest, rest_active_set, end_rest
    public :: NS_OPEN, NS_LOADING, NS_UNLOADING, TS_STICK, TS_PLASTIC, TS_SLIP
    public :: MAX_SWITCH
+
+   !> The tangential spring of a rest pair, a fraction of its K_T^e: it carries no
+   !! force (F_T = mu F_n = 0 at zero force), so it only holds the bodies'
+   !! tangential rigid-body modes; at K_T^e itself the bodies' tangential
+   !! relaxation would be solved with a stiffness the law does not have, and each
+   !! solution would leave 0.12-0.15 of the force (the gasket stack).
+   real(dp), parameter :: REST_KT = 1.0e-6_dp
 
 contains
 
@@ -107,6 +115,11 @@ contains
       end do
       do k = 1, size(st%rough)
          j = st%rough(k)
+         if (st%md(j)%rest) then
+            ! (placed at rest: the rest spring, no mode check; rest_active_set's)
+            call rest_forces(st, j)
+            cycle
+         end if
          r = evaluate_rough_pair(cdef%ifaces(cdef%pairs(j)%iface), cdef%pairs(j), st%kloc(j), &
                                  cdef%opts, st%s(j), &
                                  st%md(j), st%dun(j), st%dut(j), st%fn(j), fpred(j), &
@@ -302,6 +315,143 @@ contains
          end associate
       end do
    end subroutine hold_at_rest
+
+   !> RETURN, an increment to zero load (the driver's rest_control): every rough
+   !! pair on its unloading branch (u_A > u_thr) leaves its law for a linear
+   !! spring to its zero-force point, the rest spring F_n = K (u - u_thr) with
+   !! K = A p_A/(u_A - u_thr), the secant of the branch from A to the point; the
+   !! pairs closed now carry it, the open ones stay open (rest_active_set closes
+   !! those the bodies press beyond the point).  At zero load every force of the
+   !! answer is zero: each closed pair at its zero-force point, the others below
+   !! it, the bodies stress-free -- and a body held only by the contact rests
+   !! anywhere no pair is pressed (a half-line of positions: the problem is
+   !! singular at its answer).  The law's own tangent vanishes at the point (m2 <
+   !! 1: F ~ (u - u_thr)^(1/m2)), so Newton on it approaches the point by a
+   !! constant factor a solution (0.87 for m2 = 0.5 in the gasket stack) and
+   !! never places the body; the rest spring is linear, so one solution places
+   !! the bodies where the springs balance, and the active set (rest_active_set)
+   !! ends at the springs that carry no force: the body touching its last pairs
+   !! at their zero-force points, where the law's force is zero too.  In slip
+   !! (F_T = mu F_n = 0) with a force-free K_T^e of the pair's pressure at A (the
+   !! bodies' tangential modes at zero load).  `changed` flags the pairs set.
+   pure subroutine start_rest(cdef, st, changed)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      logical, intent(out) :: changed(:)        !! (npair)
+      integer :: k, j
+      changed = .false.
+      do k = 1, size(st%rough)
+         j = st%rough(k)
+         associate (md => st%md(j), pr => cdef%pairs(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            if (pr%area <= 0.0_dp .or. .not. md%on_unloading .or. .not. (md%ua > md%uthr)) cycle
+            if (md%anchored) cycle
+            md%rest = .true.
+            md%held = .false.
+            md%touching = .false.
+            md%newly_closed = .false.
+            md%nswitch = 0
+            md%settled = .false.
+            md%tstable = .false.
+            md%tstate = TS_SLIP
+            md%tsign = 0
+            md%xb = 0.0_dp
+            md%kte = 0.0_dp
+            if (ifc%friction /= FRICTION_NONE) md%kte = pr%area*tangential_stiffness(md%pa, ifc%s, &
+                                                                                    ifc%r_t(st%kloc(j)))
+            call rest_springs(st, j, pr%area)
+            changed(j) = .true.
+         end associate
+      end do
+   end subroutine start_rest
+
+   !> The springs of rest pair j for its state (closed: K (u - u_thr) and K_T^e, open: none).
+   pure subroutine rest_springs(st, j, area)
+      type(contact_state_t), intent(inout) :: st
+      integer, intent(in) :: j
+      real(dp), intent(in) :: area
+      associate (md => st%md(j))
+         md%kn = 0.0_dp
+         md%kt = 0.0_dp
+         if (md%closed) then
+            md%kn = area*md%pa/(md%ua - md%uthr)
+            md%kt = REST_KT*md%kte
+         end if
+      end associate
+      call rest_forces(st, j)
+   end subroutine rest_springs
+
+   !> The forces of rest pair j: its rest spring's, F_T = 0.
+   pure subroutine rest_forces(st, j)
+      type(contact_state_t), intent(inout) :: st
+      integer, intent(in) :: j
+      st%fn(j) = 0.0_dp
+      st%ft(j) = 0.0_dp
+      if (st%md(j)%closed) st%fn(j) = st%md(j)%kn*(st%s(j)%un + st%dun(j) - st%md(j)%uthr)
+   end subroutine rest_forces
+
+   !> The active set of the rest springs at a balanced solution: a closed rest
+   !! pair pulled by more than `flim` (the out-of-balance force's limit) opens,
+   !! an open one pressed beyond its zero-force point by more than flim over its
+   !! spring's stiffness closes.  `changed` flags them; the caller solves again.
+   pure subroutine rest_active_set(cdef, st, flim, changed)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      real(dp), intent(in) :: flim
+      logical, intent(out) :: changed(:)
+      integer :: k, j
+      real(dp) :: kr
+      changed = .false.
+      do k = 1, size(st%rough)
+         j = st%rough(k)
+         associate (md => st%md(j))
+            if (.not. md%rest) cycle
+            kr = cdef%pairs(j)%area*md%pa/(md%ua - md%uthr)
+            if (md%closed .and. st%fn(j) < -flim) then
+               md%closed = .false.
+            else if (.not. md%closed .and. kr*(st%s(j)%un + st%dun(j) - md%uthr) > flim) then
+               md%closed = .true.
+            else
+               cycle
+            end if
+            call rest_springs(st, j, cdef%pairs(j)%area)
+            changed(j) = .true.
+         end associate
+      end do
+   end subroutine rest_active_set
+
+   !> The rest found (no rest pair changes its state): the law back at every
+   !! rest pair.  `ok` when every closed rest pair carries at most `flim`
+   !! (a force of the answer at zero load is zero): it then is touching at its
+   !! zero-force point with the law's force there (round-off: the commit's
+   !! touching pair), the open ones open.  A pair pressed beyond flim means the
+   !! bodies carry a force at zero load (a fit, a prescribed gap): not ok, the
+   !! pairs keep their states and the law's forces, and the iteration goes on
+   !! with the law.  Either way no pair is a rest pair any more.
+   pure subroutine end_rest(cdef, st, flim, ok)
+      type(contact_def_t), intent(in) :: cdef
+      type(contact_state_t), intent(inout) :: st
+      real(dp), intent(in) :: flim
+      logical, intent(out) :: ok
+      integer :: k, j
+      ok = .true.
+      do k = 1, size(st%rough)
+         j = st%rough(k)
+         if (st%md(j)%rest .and. st%md(j)%closed) ok = ok .and. st%fn(j) <= flim
+      end do
+      do k = 1, size(st%rough)
+         j = st%rough(k)
+         associate (md => st%md(j), ifc => cdef%ifaces(cdef%pairs(j)%iface))
+            if (.not. md%rest) cycle
+            md%rest = .false.
+            if (.not. md%closed) cycle
+            md%touching = ok
+            md%held = ok
+            st%fn(j) = cdef%pairs(j)%area*normal_pressure(st%s(j)%un + st%dun(j), ifc%cn, ifc%m, &
+                                                          ifc%cn2, ifc%m2, .true., md%ua, md%pa)
+            st%ft(j) = 0.0_dp
+         end associate
+      end do
+   end subroutine end_rest
 
    !> The forces of an anchored pair's regularising springs (anchor_regularisation),
    !! added to the law's fn and ft: the touching spring of a pair above the spring's

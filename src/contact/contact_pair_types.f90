@@ -91,6 +91,10 @@ module contact_pair_types
       real(dp) :: un_anc = 0.0_dp, ut_anc = 0.0_dp  !! closure and slip increment at the anchor
       real(dp) :: fn_anc = 0.0_dp, ft_anc = 0.0_dp  !! the anchored springs' forces
                                                     !! in the last evaluation
+      logical :: rest = .false.           !! RETURN, an increment to zero load: the pair's
+                                          !! law replaced by the rest spring K (u - u_thr)
+                                          !! while the bodies are placed at rest
+                                          !! (contact_algorithm's start_rest)
    end type pair_mode_t
 
    type :: contact_state_t

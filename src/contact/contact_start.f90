@@ -208,10 +208,10 @@ contains
       real(dp), intent(in) :: dlam(:)          !! (ncase) load factor increments of the increment
       type(contact_state_t), intent(inout) :: st
       integer, allocatable :: body(:), nolinks(:, :)
-      logical, allocatable :: in_a(:), in_b(:)
-      real(dp) :: nbar(2), aa, fa, fb
-      integer :: nbody, j
-      logical :: resting
+      logical, allocatable :: in_a(:), in_b(:), rough(:)
+      real(dp) :: nbar(2), aa, fa, fb, p
+      integer :: nbody, j, i
+      logical :: resting, opposed
 
       st%p_incr = 0.0_dp
       if (m%contact%opts%update /= UPDATE_RETURN) return
@@ -226,32 +226,53 @@ contains
       if (.not. resting) return
       allocate (body(m%npoin), nolinks(2, 0), in_a(m%npoin), in_b(m%npoin))
       call find_bodies(m, nolinks, body, nbody)
-      call pair_bodies(m, body, nbody, &
-                       [(m%contact%ifaces(m%contact%pairs(j)%iface)%law == LAW_ROUGH .and. &
-                                         m%contact%pairs(j)%area > 0.0_dp, j=1, &
-                                         size(m%contact%pairs))], in_a, in_b)
-      nbar = 0.0_dp
-      aa = 0.0_dp
-      do j = 1, size(m%contact%pairs)
-         associate (pr => m%contact%pairs(j))
-            if (m%contact%ifaces(pr%iface)%law /= LAW_ROUGH .or. pr%area <= 0.0_dp) cycle
-            if (.not. (st%s(j)%closed .or. st%s(j)%on_unloading)) cycle
-            aa = aa + pr%area
-            nbar = nbar + pr%area*pr%n
-         end associate
-      end do
-      if (.not. (aa > 0.0_dp)) return
-      nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
-      ! n points from B into A: a load pressing A onto B points along -n on A, +n on B
-      fa = -dot_product(increment_resultant(in_a), nbar)
-      fb = dot_product(increment_resultant(in_b .and. .not. in_a), nbar)
-      if (abs(fa) > 0.0_dp) then
-         st%p_incr = max(fa, 0.0_dp)/aa
-      else
-         st%p_incr = max(fb, 0.0_dp)/aa
+      rough = [(m%contact%ifaces(m%contact%pairs(j)%iface)%law == LAW_ROUGH .and. &
+                m%contact%pairs(j)%area > 0.0_dp, j=1, size(m%contact%pairs))]
+      call pressure_through(rough, st%p_incr, opposed)
+      ! interfaces of opposed normals (a stack: a gasket between two flanges, the load
+      ! passing through each interface in turn): their mean normal vanishes, so each
+      ! interface on its own, the largest pressure of them
+      if (opposed) then
+         st%p_incr = 0.0_dp
+         do i = 1, size(m%contact%ifaces)
+            call pressure_through(rough .and. m%contact%pairs%iface == i, p, opposed)
+            st%p_incr = max(st%p_incr, p)
+         end do
       end if
-      if (.not. (st%p_incr < huge(1.0_dp))) st%p_incr = 0.0_dp
    contains
+      !> The pressure of the increment's load through the pairs flagged in `use`, and
+      !! whether their normals are opposed (|sum A n| below half the sum of A).
+      subroutine pressure_through(use, pr_incr, opp)
+         logical, intent(in) :: use(:)
+         real(dp), intent(out) :: pr_incr
+         logical, intent(out) :: opp
+         pr_incr = 0.0_dp
+         opp = .false.
+         call pair_bodies(m, body, nbody, use, in_a, in_b)
+         nbar = 0.0_dp
+         aa = 0.0_dp
+         do j = 1, size(m%contact%pairs)
+            associate (pr => m%contact%pairs(j))
+               if (.not. use(j)) cycle
+               if (.not. (st%s(j)%closed .or. st%s(j)%on_unloading)) cycle
+               aa = aa + pr%area
+               nbar = nbar + pr%area*pr%n
+            end associate
+         end do
+         if (.not. (aa > 0.0_dp)) return
+         opp = norm2(nbar) < 0.5_dp*aa
+         nbar = nbar/max(norm2(nbar), tiny(1.0_dp))
+         ! n points from B into A: a load pressing A onto B points along -n on A, +n on B
+         fa = -dot_product(increment_resultant(in_a), nbar)
+         fb = dot_product(increment_resultant(in_b .and. .not. in_a), nbar)
+         if (abs(fa) > 0.0_dp) then
+            pr_incr = max(fa, 0.0_dp)/aa
+         else
+            pr_incr = max(fb, 0.0_dp)/aa
+         end if
+         if (.not. (pr_incr < huge(1.0_dp))) pr_incr = 0.0_dp
+      end subroutine pressure_through
+
       !> Resultant of the increment's loads on the flagged nodes.
       function increment_resultant(flag) result(f)
          logical, intent(in) :: flag(:)

@@ -204,7 +204,8 @@ contains
          j = st%rough(k)
          associate (ifc => cdef%ifaces(cdef%pairs(j)%iface))
             ! (a pair whose tangential states cycle keeps its secant, within [0.05, 1] K_T^e)
-            if (st%md(j)%tstable) cycle
+            ! (and a rest pair its force-free K_T^e: start_rest)
+            if (st%md(j)%tstable .or. st%md(j)%rest) cycle
             kt0 = st%md(j)%kt
             call set_kt(ifc, st%md(j))
             if (abs(st%md(j)%kt - kt0) > 0.0_dp) changed = .true.
