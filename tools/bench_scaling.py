@@ -389,7 +389,8 @@ def main():
     p.add_argument("--pairs", nargs="+", type=int, default=[N_CONTACT + 1],
                    help="contact pairs of the punch's interface (the n_c axis; default 301)")
     p.add_argument("--tied", action="store_true",
-                   help="also run each mesh's model with the interface tied, one linear increment (the yardstick)")
+                   help="also run each mesh's model with the interface tied, one linear increment (the yardstick;"
+                        " with --generate-only: write its mesh and deck)")
     p.add_argument("--no-linear", action="store_true", help="skip bench_contact (one linear solve, Schur parts)")
     p.add_argument("--no-first", action="store_true", help="skip the runs cut to the first increment")
     p.add_argument("--out", default=os.path.join(ROOT, "build", "bench_scaling"))
@@ -436,6 +437,9 @@ def main():
                                       pairs=pairs))
                 store[cond] = deck
         tied = None
+        if args.tied and args.generate_only:
+            # (the tied deck written too, to be run by hand beside the others)
+            tied_deck(args.out, name, size, pairs - 1, geo_growth(os.path.join(args.out, name + ".geo")))
         if args.tied and not args.generate_only:
             tdeck = tied_deck(args.out, name, size, pairs - 1, geo_growth(os.path.join(args.out, name + ".geo")))
             trc, tcpu, trss = run(exe, tdeck, os.path.splitext(tdeck)[0] + ".h5", "mumps", args.timeout)

@@ -11,7 +11,18 @@
 !!
 !!     du_0 = s du_prev,   s = (dlam . dlam_prev) / |dlam_prev|^2,
 !!
-!! the prescribed increments kept at the restrained dofs.  The springs are
+!! the prescribed increments kept at the restrained dofs.  Where the two
+!! accepted increments before lie along the same direction, with step ratios
+!! within [1/2, 2] and the first increment of the run not among them, the
+!! parabola through the last three committed states is used instead
+!! (`quadratic_weights`; equal steps: du_0 = 2 du_prev - du_prev2), unless its
+!! correction of the straight line exceeds a quarter of the straight line's
+!! prediction (`gentle_curvature`).  On the slip increments of the many-pairs
+!! punch the straight line leaves the first iterate about 1e-3 of the increment
+!! off the converged one and the Newton return converges only linearly there
+!! (the slipping pairs' tangent misses dF_T/du_n = mu K_n, which the symmetric
+!! systems cannot hold), so the error the prediction leaves sets the count: the
+!! parabola saves a solution in most increments (docs/performance.md, sitting 11).  The springs are
 !! evaluated at du_0 (modes, forces F(du_0), tangents K_t), and the first
 !! solution is the Newton step from there, written as one solve from the
 !! committed state, because the bodies are linear:
@@ -47,7 +58,7 @@ module increment_predictor
    use contact_algorithm, only: contact_state_t, evaluate_pairs
    implicit none
    private
-   public :: increment_predictor_t, PREDICT_MIN_PAIRS
+   public :: increment_predictor_t, PREDICT_MIN_PAIRS, quadratic_weights
 
    !> The smallest model (in contact pairs) the driver predicts for by default.  A solution of
    !! a few pairs costs little, and the prediction changes the path of the iteration (which
@@ -57,14 +68,26 @@ module increment_predictor
    !! (docs/performance.md, "Fewer solutions per increment").
    integer, parameter :: PREDICT_MIN_PAIRS = 200
 
+   !> The parabola through the last three committed states is used for steps whose ratios
+   !! (the new step to the last, the last to the one before) lie in [STEP_RATIO_MIN,
+   !! STEP_RATIO_MAX], never through the first increment of the run (the pairs closing
+   !! from zero force: the most curved stretch of the path), and only where its correction
+   !! of the straight line is at most CURVATURE_MAX of the straight line's prediction
+   !! (gentle_curvature); else the straight line.
+   real(dp), parameter :: STEP_RATIO_MIN = 0.5_dp, STEP_RATIO_MAX = 2.0_dp
+   real(dp), parameter :: CURVATURE_MAX = 0.25_dp
+
    !> The last accepted increment and the prediction of the attempt under way.
    type :: increment_predictor_t
       logical :: enabled = .false.                !! predictions allowed (set by the driver)
       logical :: active = .false.                 !! the first solution is still to be shifted
       logical :: predicted = .false.              !! the attempt under way started from du0
       integer :: predictions = 0                  !! attempts that started from a prediction
+      integer :: accepted = 0                     !! increments accepted since the last forget
       real(dp), allocatable :: du_last(:, :)      !! (2, npoin) last accepted increment
       real(dp), allocatable :: dlam_last(:)       !! its load-factor increments
+      real(dp), allocatable :: du_prev(:, :)      !! (2, npoin) the accepted increment before it
+      real(dp), allocatable :: dlam_prev(:)       !! its load-factor increments
       real(dp), allocatable :: du0(:, :)          !! (2, npoin) the prediction, zero off the pairs
    contains
       procedure :: accept => predictor_accept
@@ -82,6 +105,11 @@ contains
       real(dp), intent(in) :: du(:, :)
       real(dp), intent(in) :: dlam(:)
       if (.not. this%enabled) return
+      this%accepted = this%accepted + 1
+      if (allocated(this%du_last)) then
+         call move_alloc(this%du_last, this%du_prev)
+         call move_alloc(this%dlam_last, this%dlam_prev)
+      end if
       this%du_last = du
       this%dlam_last = dlam
    end subroutine predictor_accept
@@ -91,6 +119,9 @@ contains
       class(increment_predictor_t), intent(inout) :: this
       if (allocated(this%du_last)) deallocate (this%du_last)
       if (allocated(this%dlam_last)) deallocate (this%dlam_last)
+      if (allocated(this%du_prev)) deallocate (this%du_prev)
+      if (allocated(this%dlam_prev)) deallocate (this%dlam_prev)
+      this%accepted = 0
       this%active = .false.
       this%predicted = .false.
    end subroutine predictor_forget
@@ -114,21 +145,40 @@ contains
       real(dp), intent(inout) :: rhs(:)           !! (neq) the first right-hand side
       real(dp), allocatable :: rlin(:, :), radd(:)
       logical, allocatable :: changed(:)
-      real(dp) :: s
+      real(dp) :: s, s2, c1, c2
       integer :: j, k, ip
+      logical :: quad
       this%active = .false.
       this%predicted = .false.
       if (.not. this%enabled .or. first .or. .not. allocated(this%du_last)) return
       if (size(this%dlam_last) /= size(dlam) .or. size(this%du_last, 2) /= size(du, 2)) return
       s = load_ratio(this%dlam_last, dlam)
       if (s <= 0.0_dp) return
+      ! du0 = c1 du_last + c2 du_prev (quadratic_weights)
+      s2 = 0.0_dp
+      if (allocated(this%du_prev) .and. this%accepted >= 3) then
+         if (size(this%dlam_prev) == size(dlam) .and. size(this%du_prev, 2) == size(du, 2)) &
+               s2 = load_ratio(this%dlam_prev, this%dlam_last)
+      end if
+      call quadratic_weights(s, s2, c1, c2)
+      quad = s2 >= STEP_RATIO_MIN .and. s2 <= STEP_RATIO_MAX .and. s <= STEP_RATIO_MAX
+      if (quad) quad = gentle_curvature(cdef, restrained, s, c1, c2, this%du_last, this%du_prev)
+      if (.not. quad) then
+         c1 = s
+         c2 = 0.0_dp
+      end if
       if (.not. allocated(this%du0)) allocate (this%du0(2, size(du, 2)))
       this%du0 = 0.0_dp
       do j = 1, size(cdef%pairs)
          do k = 1, cdef%pairs(j)%nn
             ip = cdef%pairs(j)%nodes(k)
             ! (restrained dofs of the pairs hold the prescribed increments in both)
-            this%du0(:, ip) = merge(du(:, ip), s*this%du_last(:, ip), restrained(:, ip))
+            if (quad) then
+               this%du0(:, ip) = merge(du(:, ip), c1*this%du_last(:, ip) + c2*this%du_prev(:, ip), &
+                                       restrained(:, ip))
+            else
+               this%du0(:, ip) = merge(du(:, ip), c1*this%du_last(:, ip), restrained(:, ip))
+            end if
             du(:, ip) = this%du0(:, ip)
          end do
       end do
@@ -154,6 +204,52 @@ contains
       ddu = ddu - this%du0
       this%active = .false.
    end subroutine predictor_shift_first
+
+   !> The weights of du0 = c1 du_last + c2 du_prev: the parabola through the
+   !! last three committed states u(t) along the direction of loading (t in
+   !! units of the last increment: steps 1/s2 and 1 before, s after), at the
+   !! new load,
+   !!     d1 = du_last, d0 = s2 du_prev (difference quotients),
+   !!     du0 = s d1 + s (s + 1) (d1 - d0) / (1 + 1/s2);
+   !! with no increment before the last along the same direction (s2 = 0) the
+   !! straight line, du0 = s du_last.  Equal steps: du0 = 2 du_last - du_prev.
+   pure subroutine quadratic_weights(s, s2, c1, c2)
+      real(dp), intent(in) :: s, s2
+      real(dp), intent(out) :: c1, c2
+      real(dp) :: q
+      c1 = s
+      c2 = 0.0_dp
+      if (.not. (s2 >= STEP_RATIO_MIN .and. s2 <= STEP_RATIO_MAX .and. s <= STEP_RATIO_MAX)) return
+      q = s*(s + 1.0_dp)/(1.0_dp + 1.0_dp/s2)
+      c1 = s + q
+      c2 = -q*s2
+   end subroutine quadratic_weights
+
+   !> Whether the parabola's correction of the straight line, (c1 - s) du_last
+   !! + c2 du_prev, is at most CURVATURE_MAX of the straight line's prediction s
+   !! du_last (largest values over the pairs' free dofs): a load path whose
+   !! response bends more than that (a pair closing from zero force, a stick
+   !! zone giving way) is extrapolated along the straight line.
+   pure logical function gentle_curvature(cdef, restrained, s, c1, c2, du_last, du_prev) result(ok)
+      type(contact_def_t), intent(in) :: cdef
+      logical, intent(in) :: restrained(:, :)
+      real(dp), intent(in) :: s, c1, c2, du_last(:, :), du_prev(:, :)
+      real(dp) :: lin, bend
+      integer :: j, k, ip, i
+      lin = 0.0_dp
+      bend = 0.0_dp
+      do j = 1, size(cdef%pairs)
+         do k = 1, cdef%pairs(j)%nn
+            ip = cdef%pairs(j)%nodes(k)
+            do i = 1, 2
+               if (restrained(i, ip)) cycle
+               lin = max(lin, abs(s*du_last(i, ip)))
+               bend = max(bend, abs((c1 - s)*du_last(i, ip) + c2*du_prev(i, ip)))
+            end do
+         end do
+      end do
+      ok = bend <= CURVATURE_MAX*lin
+   end function gentle_curvature
 
    !> s with dlam = s dlam_last (to 1e-9 of |dlam|), else 0: a prediction
    !! extrapolates only along the last increment's direction of loading.
