@@ -20,13 +20,15 @@
 !! before the bodies balance their forces to 1e-10, once the out-of-balance
 !! force is small against the update (inexact Uzawa, early_update).  Within
 !! one Uzawa iterate the slip bound is mu lam_n
-!! (Tresca's law, linear modes) until the penetrations and stick slips are
-!! within tolerance; then it is mu F_n of the current normal force (Coulomb's
-!! law, the coupling corrected by the out-of-balance force), so that converged
-!! slipping pairs carry mu F_n to 1e-10.  A closed pair keeps a tension within
-!! a band (half its start force or multiplier) while the multipliers drive it
-!! to zero, and opens when they do not: a body held by contact alone that is
-!! unloaded to zero rests closed at zero force instead of floating free.
+!! (Tresca's law, linear modes; Coulomb's mu F_n for a pair without a normal
+!! multiplier yet, whose Tresca bound would be zero: without_multiplier) until
+!! the penetrations and stick slips are within tolerance; then it is mu F_n
+!! of the current normal force (Coulomb's law, the coupling corrected by the
+!! out-of-balance force), so that converged slipping pairs carry mu F_n to
+!! 1e-10.  A closed pair keeps a tension within a band (half its start force or
+!! multiplier) while the multipliers drive it to zero, and opens when they do
+!! not: a body held by contact alone that is unloaded to zero rests closed at
+!! zero force instead of floating free.
 !! Ref: J. C. Simo, T. A. Laursen, An augmented Lagrangian treatment of contact
 !! problems involving friction, Comput. Struct. 42 (1992) 97-116; P. Wriggers,
 !! Computational Contact Mechanics (2006), ch. 6.
@@ -91,22 +93,26 @@ contains
       f = 1.0e-10_dp*max(st%fref, abs(st%lam_n(j)))
    end function round_off_force
 
-   !> Whether ideal pair j entered the increment penetrated beyond the tolerance
-   !! and has no normal multiplier yet: an interference (a shrink fit's pairs,
-   !! whose overlap the first increment presses out) before the first update of
-   !! the multipliers.  Tresca's bound mu lam_n of such a pair is zero, although
-   !! its normal force is the largest of the run: the first iterate slipped every
-   !! pair of a fit and the regularising springs alone held a hub against its
-   !! push (it ran hundreds of millimetres down the shaft and never came back).
-   !! Its bound is Coulomb's mu F_n of the trial normal force instead, until the
-   !! multipliers hold the fit's force.  A converged increment leaves every closed
-   !! pair within tol_pen, and a pair closing from a gap starts with u_n <= 0:
-   !! no other pair meets the test.
-   pure logical function pressed_without_force(st, j) result(pressed)
+   !> Whether ideal pair j has no normal multiplier yet (lam_n <= 0): a pair closed
+   !! in this increment from a gap or from zero force -- every pair of a first
+   !! increment, a pair closing later -- or an interference (a shrink fit's pairs,
+   !! penetrated at the start), before the first update of the multipliers.
+   !! Tresca's bound mu lam_n of such a pair is zero whatever its normal force, so
+   !! the first iterate is frictionless: it slipped every pair of a fit and the
+   !! regularising springs alone held a hub against its push (it ran hundreds of
+   !! millimetres down the shaft), and it let a bolt head slide 20 um over a plate
+   !! clamped by a preload of 1000 N/mm (every head pair slipping at zero friction);
+   !! the first update then put mu lam_n on all of them at once, in the directions
+   !! of that free slip, the next solution threw the plates' rough interface
+   !! (p ~ u^3 of a measured surface) far into compression and back, and its pairs
+   !! froze in their modes (tests/decks/newuser/bolt_lap_measured_law).  Such a
+   !! pair's bound is Coulomb's mu F_n of its trial normal force instead, until
+   !! the multipliers carry its force.
+   pure logical function without_multiplier(st, j) result(none)
       type(contact_state_t), intent(in) :: st
       integer, intent(in) :: j
-      pressed = st%lam_n(j) <= 0.0_dp .and. st%s(j)%un > st%tol_pen
-   end function pressed_without_force
+      none = st%lam_n(j) <= 0.0_dp
+   end function without_multiplier
 
    !> Forces and modes of an ideal pair for its current multipliers:
    !! F_n = lam_n + eps_n u_n when closed (0 open), F_T = proj(lam_T + eps_T du_T)
@@ -163,15 +169,16 @@ contains
             ! sticking pairs' soft tangential penalty makes it (86-123 solutions
             ! per increment on a frictional ring of segment pairs).  The matrix
             ! keeps K_T = 0 (symmetric): the coupling mu dF_n is corrected by
-            ! the out-of-balance force of the next solutions.
+            ! the out-of-balance force of the next solutions.  A pair without a
+            ! normal multiplier has Coulomb's bound from the start (without_multiplier).
             lim = md%mu*max(merge(st%fn(jp), st%lam_n(jp), st%coulomb .or. &
-                                  pressed_without_force(st, jp)), 0.0_dp)
+                                  without_multiplier(st, jp)), 0.0_dp)
             trial_t = st%lam_t(jp) + st%eps_t(jp)*st%dut(jp)
             ! the cone is widened by the round-off allowance of the Coulomb check
-            ! (1e-10 F_n): with lam_n = 0 (the first iterate of a pair closed
-            ! without force) the bound is zero, and an exact test would decide
-            ! stick or slip, and so the number of repeats, by the sign of the
-            ! round-off in du_T of a pair that does not move tangentially
+            ! (1e-10 F_n): with a bound of zero (a pair closed at zero normal
+            ! force) an exact test would decide stick or slip, and so the number
+            ! of repeats, by the sign of the round-off in du_T of a pair that does
+            ! not move tangentially
             if (md%hold .and. md%tstate == TS_SLIP) then
                ts = TS_SLIP
                st%ft(jp) = md%sdir*lim
@@ -242,8 +249,8 @@ contains
    !! slipping a regularising spring KT_SLIP_REG eps_T in the matrix only (its
    !! force stays mu F_n: the out-of-balance force of the next solution corrects
    !! the difference).  A body held tangentially by friction alone whose pairs
-   !! all slip at once -- every pair of the first iterate of a body pressed
-   !! without multipliers (the bound mu lam_n = 0), every pair at zero load --
+   !! all slip at once -- every pair at zero load, or (until this version) every
+   !! pair of the first iterate of a body pressed without multipliers --
    !! would otherwise be free to translate (a singular system); with the spring
    !! it stays at rest when the friction forces balance, and it moves on (and
    !! the increment fails, out of balance) when they cannot.  A pair whose mode

@@ -289,6 +289,8 @@ contains
       type(step_record_t) :: srec
       real(dp), allocatable :: fext(:, :), fext_new(:, :), carry(:), dlam(:), ve_old(:), pa_old(:)
       integer :: inc, nstep, cuts, ic
+      integer :: nlast, nref                        !! AUTOINC: solutions of the last step, and of
+                                                    !! the last step before the step was cut
       logical :: first, rough_newton, last, written, full
       real(dp) :: frac, step, s
       real(dp) :: msize                             !! the model's largest extent (runaway checks)
@@ -303,6 +305,8 @@ contains
       first = .true.
       rough_newton = an%returning .and. res%contact%has_rough   ! Newton return of the rough pairs
       step = 1.0_dp
+      nlast = 0
+      nref = 0
       deck: do inc = 1, m%nincs
          frac = 0.0_dp
          if (.not. m%autoinc) step = 1.0_dp
@@ -399,11 +403,19 @@ contains
                                                         res%warnings)
             call finish_step(m, an, res, out, fext, ve_old, msize, srec, status)
             if (.not. status%ok()) exit deck
+            ! AUTOINC: after an easy step the next one doubles.  Easy: at most NEASY solutions,
+            ! or, while the step is cut, no more than the reference -- the solutions of the last
+            ! step accepted before the cut (of the first step after it, where the run's first
+            ! step was cut): a contact increment's solutions have a floor that does not shrink
+            ! with the step (mode changes, multiplier updates), so a cut step that costs what
+            ! the steps before the trouble cost is as easy as they were (docs/robustness.md)
+            if (cuts > 0 .and. nlast > 0) nref = nlast
+            if (m%autoinc .and. .not. res%contact%chatter .and. (att%solutions <= m%autoinc_easy &
+                .or. att%solutions <= nref)) step = min(1.0_dp, 2.0_dp*step)
+            if (cuts > 0 .and. nlast == 0) nref = att%solutions
+            if (step >= 1.0_dp) nref = 0
+            nlast = att%solutions
             cuts = 0
-            if (m%autoinc .and. att%solutions <= m%autoinc_easy .and. .not. res%contact%chatter) &
-                  then
-               step = min(1.0_dp, 2.0_dp*step)
-            end if
          end do
       end do deck
       call res%trim_history()
