@@ -443,15 +443,15 @@ contains
          ddu = 0.0_dp
          rprev = att%rnorm
          ! ... against the actual ones, after the mode checks
-         call update_modes(an, m, st, first, newton, fext_new, fscale, rpred, rvec, rhs, changed, att, &
-                           nrest, again, rshare, need_matrix, wasc)
+         call update_modes(an, m, st, first, newton, fext_new, fscale, rpred, rvec, rhs, &
+                           changed, att, nrest, again, rshare, need_matrix, wasc)
          call line_search(an, m, st, start, first, newton .and. iter > 1 .and. .not. slip_reg, &
                           fscale, rpred, rvec, rhs, changed, att, again, need_matrix, dnorm, &
                           rshare, shortened)
          ! a zero-load increment converging slowly: the bodies placed at rest (rest_start)
-         if (newton .and. .not. slip_reg) call rest_start(an, m, st, fext_new, fscale, rpred, rvec, &
-                                                          rhs, changed, att, rprev, iter, rest, &
-                                                          again, need_matrix, dnorm, wasc)
+         if (newton .and. .not. slip_reg) call rest_start(an, m, st, fext_new, fscale, rpred, &
+                                                          rvec, rhs, changed, att, rprev, iter, &
+                                                          rest, again, need_matrix, dnorm, wasc)
          if (again) cycle
          if (newton .and. .not. anchored .and. iter >= 2 .and. .not. shortened) then
             call stretch_correction(an, m, st, first, fscale, dl, start%rhs, start%rvec, rpred, &
@@ -476,8 +476,8 @@ contains
          if (att%rnorm > att%rtol .and. .not. anchored .and. &
              early_update(m%contact, st, att%rnorm*fscale)) then
             call augment_multipliers(m%contact, st, done, early=.true.)
-            call update_modes(an, m, st, first, newton, fext_new, fscale, rpred, rvec, rhs, changed, att, &
-                           nrest, again, rshare, need_matrix, wasc)
+            call update_modes(an, m, st, first, newton, fext_new, fscale, rpred, rvec, rhs, &
+                              changed, att, nrest, again, rshare, need_matrix, wasc)
             if (again) cycle
          else if (att%rnorm <= att%rtol .and. &
              (.not. newton .or. dnorm <= m%contact%opts%tol_displacement .or. &
@@ -517,8 +517,8 @@ contains
                att%converged = .true.
                exit
             end if
-            call update_modes(an, m, st, first, newton, fext_new, fscale, rpred, rvec, rhs, changed, att, &
-                           nrest, again, rshare, need_matrix, wasc)
+            call update_modes(an, m, st, first, newton, fext_new, fscale, rpred, rvec, rhs, &
+                              changed, att, nrest, again, rshare, need_matrix, wasc)
             if (again) cycle
          end if
          need_matrix = newton .and. .not. an%modified

@@ -157,8 +157,9 @@ contains
       ! du0 = c1 du_last + c2 du_prev (quadratic_weights)
       s2 = 0.0_dp
       if (allocated(this%du_prev) .and. this%accepted >= 3) then
-         if (size(this%dlam_prev) == size(dlam) .and. size(this%du_prev, 2) == size(du, 2)) &
-               s2 = load_ratio(this%dlam_prev, this%dlam_last)
+         if (size(this%dlam_prev) == size(dlam) .and. size(this%du_prev, 2) == size(du, 2)) then
+            s2 = load_ratio(this%dlam_prev, this%dlam_last)
+         end if
       end if
       call quadratic_weights(s, s2, c1, c2)
       quad = s2 >= STEP_RATIO_MIN .and. s2 <= STEP_RATIO_MAX .and. s <= STEP_RATIO_MAX
