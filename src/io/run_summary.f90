@@ -222,21 +222,11 @@ contains
       end if
       s%contact = np > 0
       if (.not. s%contact) return
-      s%npair = np
-      associate (pairs => m%contact%pairs(1:np), closed => cf%normal_state(1:np) /= NS_OPEN)
-         s%nclosed = count(closed)
-         s%nslip = count(closed .and. cf%tangential_state(1:np) == TS_SLIP)
-         if (s%nclosed > 0) then
-            s%peak_pair = maxloc(cf%pressure(1:np), 1, mask=closed)
-            s%peak_pressure = cf%pressure(s%peak_pair)
-            s%peak_xy = pairs(s%peak_pair)%position
-            s%area = sum(pairs%area, mask=closed)
-            s%width = closed_extent(pairs, closed)
-         end if
-         s%force_n = sum(cf%force_normal(1:np))
-         s%force_t = sum(cf%force_tangential(1:np))
-         if (allocated(body%disp)) s%approach = body_approach(m, body%disp)
-         call per_interface(m, body, cf, np, s)
+      call selection_figures(m, body, cf, np, spread(.true., 1, np), s%npair, s%nclosed, s%nslip, &
+                             s%peak_pair, s%peak_pressure, s%peak_xy, s%width, s%area, &
+                             s%approach, s%force_n, s%force_t)
+      call per_interface(m, body, cf, np, s)
+      associate (pairs => m%contact%pairs(1:np))
          do k = 1, min(np, size(ua), size(pa))
             if (pa(k) <= 0.0_dp) cycle
             associate (f => m%contact%ifaces(pairs(k)%iface))
@@ -373,9 +363,8 @@ contains
       type(contact_fields_t), intent(in) :: cf          !! contact fields of the last step
       integer, intent(in) :: np                         !! pairs with fields
       type(run_summary_t), intent(inout) :: s
-      integer :: ni, i, j
-      integer, allocatable :: idx(:)
-      logical :: sel(np), closed(np)
+      integer :: ni, i
+      real(dp) :: xy(2)
       ni = 0
       if (allocated(m%contact%ifaces)) ni = size(m%contact%ifaces)
       ni = max(ni, maxval(m%contact%pairs(1:np)%iface))
@@ -383,30 +372,56 @@ contains
       allocate (s%if_pairs(ni), s%if_closed(ni), s%if_slip(ni), s%if_peak_pair(ni), source=0)
       allocate (s%if_peak(ni), s%if_peak_x(ni), s%if_peak_y(ni), s%if_width(ni), s%if_area(ni), &
                 s%if_approach(ni), s%if_force_n(ni), s%if_force_t(ni), source=0.0_dp)
+      do i = 1, ni
+         call selection_figures(m, body, cf, np, m%contact%pairs(1:np)%iface == i, s%if_pairs(i), &
+                                s%if_closed(i), s%if_slip(i), s%if_peak_pair(i), s%if_peak(i), &
+                                xy, s%if_width(i), s%if_area(i), s%if_approach(i), &
+                                s%if_force_n(i), s%if_force_t(i))
+         s%if_peak_x(i) = xy(1)
+         s%if_peak_y(i) = xy(2)
+      end do
+   end subroutine per_interface
+
+   !> The interface figures of the summary over a selection of the pairs (all of them: the
+   !! model's; those of one interface: its own): pairs, closed and slipping pairs, the peak
+   !! pressure (pair 0: none closed) and where, the closed pairs' width and area, the approach
+   !! of the bodies, the total forces.
+   pure subroutine selection_figures(m, body, cf, np, sel, npair, nclosed, nslip, peak_pair, &
+                                     peak, xy, width, area, approach, fn, ft)
+      type(model_t), intent(in) :: m                    !! the model
+      type(body_fields_t), intent(in) :: body           !! body fields of the last step (disp)
+      type(contact_fields_t), intent(in) :: cf          !! contact fields of the last step
+      integer, intent(in) :: np                         !! pairs with fields
+      logical, intent(in) :: sel(:)                     !! (np) the pairs selected
+      integer, intent(out) :: npair, nclosed, nslip, peak_pair
+      real(dp), intent(out) :: peak, xy(2), width, area, approach, fn, ft
+      integer :: j
+      integer, allocatable :: idx(:)
+      logical :: closed(np)
+      peak_pair = 0
+      peak = 0.0_dp
+      xy = 0.0_dp
+      width = 0.0_dp
+      area = 0.0_dp
+      approach = 0.0_dp
       associate (pairs => m%contact%pairs(1:np))
          closed = cf%normal_state(1:np) /= NS_OPEN
-         do i = 1, ni
-            sel = pairs%iface == i
-            s%if_pairs(i) = count(sel)
-            if (s%if_pairs(i) == 0) cycle
-            s%if_closed(i) = count(sel .and. closed)
-            s%if_slip(i) = count(sel .and. closed .and. cf%tangential_state(1:np) == TS_SLIP)
-            if (s%if_closed(i) > 0) then
-               j = maxloc(cf%pressure(1:np), 1, mask=sel .and. closed)
-               s%if_peak_pair(i) = j
-               s%if_peak(i) = cf%pressure(j)
-               s%if_peak_x(i) = pairs(j)%position(1)
-               s%if_peak_y(i) = pairs(j)%position(2)
-               s%if_area(i) = sum(pairs%area, mask=sel .and. closed)
-               idx = pack([(j, j=1, np)], sel)
-               s%if_width(i) = closed_extent(pairs(idx), closed(idx))
-            end if
-            s%if_force_n(i) = sum(cf%force_normal(1:np), mask=sel)
-            s%if_force_t(i) = sum(cf%force_tangential(1:np), mask=sel)
-            if (allocated(body%disp)) s%if_approach(i) = body_approach(m, body%disp, sel)
-         end do
+         npair = count(sel)
+         nclosed = count(sel .and. closed)
+         nslip = count(sel .and. closed .and. cf%tangential_state(1:np) == TS_SLIP)
+         if (nclosed > 0) then
+            peak_pair = maxloc(cf%pressure(1:np), 1, mask=sel .and. closed)
+            peak = cf%pressure(peak_pair)
+            xy = pairs(peak_pair)%position
+            area = sum(pairs%area, mask=sel .and. closed)
+            idx = pack([(j, j=1, np)], sel)
+            width = closed_extent(pairs(idx), closed(idx))
+         end if
+         fn = sum(cf%force_normal(1:np), mask=sel)
+         ft = sum(cf%force_tangential(1:np), mask=sel)
+         if (allocated(body%disp) .and. npair > 0) approach = body_approach(m, body%disp, sel)
       end associate
-   end subroutine per_interface
+   end subroutine selection_figures
 
    !> Extent of the closed pairs along the coordinate of largest spread of all pairs.
    pure real(dp) function closed_extent(pairs, closed) result(w)
@@ -434,16 +449,14 @@ contains
    pure real(dp) function body_approach(m, disp, sel) result(delta)
       type(model_t), intent(in) :: m
       real(dp), intent(in) :: disp(:, :)            !! (2, npoin) displacements
-      logical, intent(in), optional :: sel(:)       !! the pairs to use (default: all; the
-                                                    !! first size(sel) pairs)
+      logical, intent(in) :: sel(:)                 !! the pairs to use (of the first
+                                                    !! size(sel) pairs)
       integer :: body(m%npoin), j, ie, k, ra, r, np
       real(dp) :: n(2), s(m%npoin), tol, ext
       logical :: in_a(m%npoin), in_b(m%npoin)
       logical, allocatable :: use(:)
-      np = size(m%contact%pairs)
-      if (present(sel)) np = min(np, size(sel))
-      allocate (use(np), source=.true.)
-      if (present(sel)) use = sel(1:np)
+      np = min(size(m%contact%pairs), size(sel))
+      allocate (use(np), source=sel(1:np))
       delta = 0.0_dp
       if (.not. any(use)) return
       associate (pairs => m%contact%pairs(1:np))
